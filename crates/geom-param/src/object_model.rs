@@ -1,0 +1,144 @@
+//! A prepared object: exact solid, surface components and their dual representation.
+//!
+//! Everything here is preprocessing, done once per object and shared by all queries.
+
+use crate::component_mesh::ComponentMesh;
+use crate::components::{partition, ComponentKind, SurfaceComponent};
+use crate::convex_hull::ConvexHull;
+use crate::feature::{ComponentId, FaceId};
+use crate::profile::Profile;
+use crate::revolve::revolve;
+use crate::solid::Solid;
+use crate::tessellation::tessellate;
+
+/// How finely to mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshOptions {
+    /// Largest allowed distance between a component mesh and the exact surface (mm).
+    pub chordal_tolerance: f64,
+}
+
+impl Default for MeshOptions {
+    /// 0.05 mm: sub-millimetre meshes of hand-sized objects with a few thousand triangles each.
+    fn default() -> Self {
+        Self { chordal_tolerance: 0.05 }
+    }
+}
+
+/// Options that cannot build a model.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    /// The chordal tolerance is not finite, not positive, or so small against the object
+    /// (below 1e-7 of its size) that the mesh would not fit in memory.
+    #[error("chordal tolerance {tolerance} mm is not usable for an object of size {scale} mm (needs a finite value in [1e-7, 1] x size)")]
+    BadTolerance {
+        /// The requested tolerance (mm).
+        tolerance: f64,
+        /// The object's size (largest coordinate, mm).
+        scale: f64,
+    },
+}
+
+/// A solid with its surface components, each with a mesh (and, for convex ones, a hull).
+#[derive(Debug)]
+pub struct ObjectModel {
+    /// Name of the object.
+    pub name: String,
+    /// The validated profile it was revolved from.
+    pub profile: Profile,
+    /// The exact boundary representation.
+    pub solid: Solid,
+    /// Surface components, indexed by [`ComponentId`].
+    pub components: Vec<SurfaceComponent>,
+    /// Component meshes, indexed by [`ComponentId`].
+    pub meshes: Vec<ComponentMesh>,
+    /// Convex hulls of the convex components' meshes (`None` for concave components and for
+    /// flat convex components with no volume).
+    pub hulls: Vec<Option<ConvexHull>>,
+    /// The options the meshes were built with.
+    pub mesh_options: MeshOptions,
+    component_of_face: Vec<ComponentId>,
+}
+
+impl ObjectModel {
+    /// Revolves `profile`, partitions it into components and meshes each one.
+    ///
+    /// # Errors
+    /// [`ModelError::BadTolerance`] for an unusable chordal tolerance.
+    pub fn from_profile(
+        name: impl Into<String>,
+        profile: Profile,
+        options: &MeshOptions,
+    ) -> Result<Self, ModelError> {
+        let tolerance = options.chordal_tolerance;
+        let scale = profile.scale();
+        if !(tolerance.is_finite() && tolerance >= 1e-7 * scale && tolerance <= scale) {
+            return Err(ModelError::BadTolerance { tolerance, scale });
+        }
+        let solid = revolve(&profile);
+        let components = partition(&solid);
+        let tessellation = tessellate(&profile, tolerance);
+        let meshes: Vec<ComponentMesh> =
+            components.iter().map(|c| tessellation.component_mesh(c)).collect();
+        let hulls = components
+            .iter()
+            .zip(&meshes)
+            .map(|(c, m)| match c.kind {
+                ComponentKind::Convex => ConvexHull::of_mesh(m),
+                ComponentKind::Concave => None,
+            })
+            .collect();
+        let mut component_of_face = vec![ComponentId(0); solid.faces.len()];
+        for c in &components {
+            for f in &c.faces {
+                component_of_face[f.0 as usize] = c.id;
+            }
+        }
+        Ok(Self {
+            name: name.into(),
+            profile,
+            solid,
+            components,
+            meshes,
+            hulls,
+            mesh_options: *options,
+            component_of_face,
+        })
+    }
+
+    /// The component a face belongs to.
+    ///
+    /// # Panics
+    /// If the face id does not belong to this object.
+    #[must_use]
+    pub fn component_of_face(&self, face: FaceId) -> ComponentId {
+        self.component_of_face[face.0 as usize]
+    }
+
+    /// The component with this id.
+    ///
+    /// # Panics
+    /// If the id does not belong to this object.
+    #[must_use]
+    pub fn component(&self, id: ComponentId) -> &SurfaceComponent {
+        &self.components[id.0 as usize]
+    }
+
+    /// The mesh of a component.
+    ///
+    /// # Panics
+    /// If the id does not belong to this object.
+    #[must_use]
+    pub fn mesh(&self, id: ComponentId) -> &ComponentMesh {
+        &self.meshes[id.0 as usize]
+    }
+
+    /// The hull of a convex component, if it has one.
+    ///
+    /// # Panics
+    /// If the id does not belong to this object.
+    #[must_use]
+    pub fn hull(&self, id: ComponentId) -> Option<&ConvexHull> {
+        self.hulls[id.0 as usize].as_ref()
+    }
+}
