@@ -1,0 +1,43 @@
+//! Project automation behind `cargo xtask`: fixture generation.
+
+pub mod obj;
+pub mod paper_objects;
+
+use geom_param::MeshOptions;
+use std::path::{Path, PathBuf};
+
+/// Chordal tolerance of the meshes written as OBJ files (mm).
+pub const FIXTURE_OBJ_TOLERANCE: f64 = 0.1;
+
+/// Every generated fixture file: path relative to the workspace root, and contents.
+///
+/// # Errors
+/// A message if a paper object fails to build (a bug in its definition).
+pub fn generate_fixtures() -> Result<Vec<(PathBuf, String)>, String> {
+    let mut files = Vec::new();
+    let options = MeshOptions { chordal_tolerance: FIXTURE_OBJ_TOLERANCE };
+    for description in paper_objects::paper_objects() {
+        let name = description.name.clone();
+        let model = description.build(&options).map_err(|e| format!("{name}: {e}"))?;
+        let dir = Path::new("fixtures/objects");
+        files.push((dir.join(format!("{name}.json")), description.to_json()));
+        files.push((dir.join(format!("{name}.obj")), obj::to_obj(&model, paper_objects::GENERATED_NOTE)));
+    }
+    Ok(files)
+}
+
+/// Writes every fixture under `root`.
+///
+/// # Errors
+/// A message naming the file that could not be written.
+pub fn write_fixtures(root: &Path) -> Result<(), String> {
+    for (path, contents) in generate_fixtures()? {
+        let full = root.join(&path);
+        if let Some(dir) = full.parent() {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        }
+        std::fs::write(&full, contents).map_err(|e| format!("{}: {e}", full.display()))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
