@@ -489,24 +489,46 @@ impl Intervals {
     }
 
     fn segment(&self, t1: &[DVec3; 3], t2: &[DVec3; 3]) -> TriangleContact {
-        if !self.overlaps() {
+        let first = order(&self.lo1, &self.hi2);
+        let last = order(&self.hi1, &self.lo2);
+        if first < 0.0 || last > 0.0 {
             return TriangleContact::Disjoint;
         }
-        // Crossings of t1 lie on the plane of t2 and vice versa. On a tie prefer a vertex,
-        // which is returned exactly.
+        // Crossings of t1 lie on the plane of t2 and vice versa. When two ends coincide
+        // exactly, one point stands for both, a vertex if either is one (returned exactly).
+        if first == 0.0 {
+            return point_contact(coincident(&self.lo1, &self.hi2, t1, t2));
+        }
+        if last == 0.0 {
+            return point_contact(coincident(&self.hi1, &self.lo2, t1, t2));
+        }
         let o = order(&self.lo1, &self.lo2);
-        let a = if o > 0.0 || (o == 0.0 && !self.lo1.is_vertex()) {
+        let a = if o > 0.0 {
             self.lo2.point(t1)
-        } else {
+        } else if o < 0.0 {
             self.lo1.point(t2)
+        } else {
+            coincident(&self.lo1, &self.lo2, t1, t2)
         };
         let o = order(&self.hi1, &self.hi2);
-        let b = if o < 0.0 || (o == 0.0 && !self.hi1.is_vertex()) {
+        let b = if o > 0.0 {
+            self.hi1.point(t2)
+        } else if o < 0.0 {
             self.hi2.point(t1)
         } else {
-            self.hi1.point(t2)
+            coincident(&self.hi1, &self.hi2, t1, t2)
         };
         TriangleContact::Segment { a, b }
+    }
+}
+
+/// The point of a crossing `c1` of `t1` and a crossing `c2` of `t2` known to coincide: a
+/// vertex if either is one.
+fn coincident(c1: &Crossing, c2: &Crossing, t1: &[DVec3; 3], t2: &[DVec3; 3]) -> DVec3 {
+    if c1.is_vertex() || !c2.is_vertex() {
+        c1.point(t2)
+    } else {
+        c2.point(t1)
     }
 }
 
@@ -544,8 +566,13 @@ fn point_contact(p: DVec3) -> TriangleContact {
     TriangleContact::Segment { a: p, b: p }
 }
 
-/// Contact when the triangles are coplanar or one is degenerate. With `first_only`, the
-/// coplanar polygon stops at its first point (enough to decide, same decision).
+/// Contact when the triangles are coplanar or one is degenerate (the [`Stage::Special`] case).
+/// With `first_only`, the coplanar polygon stops at its first point (enough to decide, same
+/// decision).
+///
+/// [`Stage::of`] has already rejected a triangle strictly on one side of the other's plane, so
+/// a degenerate triangle met here has no two points strictly on the same side of a
+/// non-degenerate one's plane: a point lies on it, and a segment touches or crosses it.
 fn special_contact(t1: &[DVec3; 3], t2: &[DVec3; 3], first_only: bool) -> TriangleContact {
     match (Shape::of(t1), Shape::of(t2)) {
         (Shape::Triangle(a), Shape::Triangle(b)) => {
@@ -560,7 +587,8 @@ fn special_contact(t1: &[DVec3; 3], t2: &[DVec3; 3], first_only: bool) -> Triang
             segment_triangle(p, q, &t)
         }
         (Shape::Triangle(t), Shape::Point(x)) | (Shape::Point(x), Shape::Triangle(t)) => {
-            if side(&t, x) == 0.0 && in_triangle(&t, x) {
+            // x lies in the plane of t (see above).
+            if in_triangle(&t, x) {
                 point_contact(x)
             } else {
                 TriangleContact::Disjoint
@@ -647,7 +675,7 @@ fn coplanar_overlap(t1: &[DVec3; 3], t2: &[DVec3; 3], first_only: bool) -> Overl
         .filter(|&&v| inside(t2, sign2, v))
         .chain(
             t2.iter()
-                .filter(|&&v| !t1.contains(&v) && inside(t1, sign1, v)),
+                .filter(|&&v| inside(t1, sign1, v)),
         )
         .copied();
     for v in candidates {
@@ -671,12 +699,10 @@ fn coplanar_overlap(t1: &[DVec3; 3], t2: &[DVec3; 3], first_only: bool) -> Overl
     poly
 }
 
-/// Segment `[p, q]` (distinct ends) against the non-degenerate triangle `t`.
+/// Segment `[p, q]` (distinct ends, not strictly on one side of the plane) against the
+/// non-degenerate triangle `t`.
 fn segment_triangle(p: DVec3, q: DVec3, t: &[DVec3; 3]) -> TriangleContact {
     let (sp, sq) = (side(t, p), side(t, q));
-    if opposite(sp, -sq) {
-        return TriangleContact::Disjoint;
-    }
     if sp == 0.0 && sq == 0.0 {
         return segment_in_plane(p, q, t);
     }

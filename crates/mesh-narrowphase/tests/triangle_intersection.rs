@@ -351,6 +351,13 @@ fn touching_vertex_on_edge_and_shared_vertex() {
     let p = v(2.0, 0.0, 0.0);
     check_segment_all_orders(&base(), &t2, (p, p), 0.0);
 
+    // t2's vertex on t1's edge at a parameter (1/5) where interpolating along the edge does not
+    // reproduce it exactly: the contact is still the vertex itself, bit for bit.
+    let t1 = [v(0.0, 0.0, 0.0), v(5.0, 10.0, 0.0), v(-3.0, 7.0, 0.0)];
+    let (p, out) = (v(1.0, 2.0, 0.0), v(10.0, -5.0, 0.0));
+    let t2 = [p, p + out + DVec3::Z, p + out * 2.0 + v(0.3, 0.0, -1.0)];
+    check_segment_all_orders(&t1, &t2, (p, p), 0.0);
+
     // Shared vertex, t2 above the plane.
     let o = DVec3::ZERO;
     let t2 = [o, v(-1.0, -1.0, 1.0), v(-1.0, 0.0, 2.0)];
@@ -486,6 +493,23 @@ fn nearly_parallel_planes_closed_form() {
         let s = f64::tan(angle);
         let t2 = [v(-1.0, 0.0, -s), v(5.0, 0.0, -s), v(1.0, 3.0, 2.0 * s)];
         check_segment_all_orders(&base(), &t2, (v(0.0, 1.0, 0.0), v(3.0, 1.0, 0.0)), 1e-14);
+    }
+}
+
+#[test]
+fn nearly_parallel_tilted_planes_closed_form() {
+    // Plane 1: x + y + z = 3. Plane 2: (1 + s) x + y + (1 + s) z = 3 + 2s, tilted from it by
+    // about 0.47 s rad about the line x + z = 2, y = 1. Points of plane 2 with integer x and z
+    // are exact in f64: y = 3 - (x + z) + s (2 - x - z). t1 meets the line at x in [0, 2]
+    // (ends (2, 1, 0) and (0, 1, 2), crossings of its edges with plane 2); t2 at x in
+    // [-0.2, 2.2]. Here orient3d's terms cancel to 1e-12, so plain f64 magnitudes would misplace
+    // the ends by about 1e-4; double-double keeps them to rounding.
+    let t1 = [v(3.0, 0.0, 0.0), v(0.0, 3.0, 0.0), v(0.0, 0.0, 3.0)];
+    let want = (v(2.0, 1.0, 0.0), v(0.0, 1.0, 2.0));
+    for s in [pow2(-20), pow2(-39), pow2(-50)] {
+        let on2 = |x: f64, z: f64| v(x, 3.0 - (x + z) + s * (2.0 - x - z), z);
+        let t2 = [on2(1.0, -3.0), on2(-3.0, 1.0), on2(4.0, 4.0)];
+        check_segment_all_orders(&t1, &t2, want, 1e-14);
     }
 }
 
@@ -762,13 +786,21 @@ fn boolean_agrees_with_full_on_100k_seeded_pairs() {
         // The decision does not depend on argument or vertex order.
         let (p1, p2) = (permutations(&t1)[rng.index(6)], permutations(&t2)[rng.index(6)]);
         assert_eq!(triangles_intersect(&p2, &p1), quick, "{t1:?} {t2:?}");
-        match full {
-            TriangleContact::Disjoint => {}
-            TriangleContact::Segment { a, b } => assert!(a.is_finite() && b.is_finite()),
+        let pts = match full {
+            TriangleContact::Disjoint => vec![],
+            TriangleContact::Segment { a, b } => vec![a, b],
             TriangleContact::Coplanar { points } => {
                 coplanar += 1;
                 assert!((1..=6).contains(&points.len()));
-                assert!(points.iter().all(|p| p.is_finite()));
+                points.to_vec()
+            }
+        };
+        // Every point is finite and inside both bounding boxes (as documented).
+        for p in pts {
+            assert!(p.is_finite());
+            for t in [&t1, &t2] {
+                let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+                assert!(p.cmpge(lo).all() && p.cmple(hi).all(), "{p} outside {lo}..{hi}");
             }
         }
         hits[kind][usize::from(quick)] += 1;
