@@ -4,7 +4,9 @@ use std::path::Path;
 
 #[test]
 fn committed_fixtures_are_up_to_date() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("workspace root");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("workspace root");
     let files = xtask::generate_fixtures().expect("fixtures generate");
     assert!(!files.is_empty());
     for (path, contents) in files {

@@ -26,6 +26,10 @@ impl Curve for CircleEdge {
     }
 
     fn domain(&self) -> ParamRange {
-        ParamRange { min: 0.0, max: TAU, periodic: true }
+        ParamRange {
+            min: 0.0,
+            max: TAU,
+            periodic: true,
+        }
     }
 }

@@ -63,7 +63,11 @@ impl ComponentMesh {
     /// collision target, only no longer an exact offset there.
     #[must_use]
     pub fn offset_positions(&self, margin: f64) -> Vec<DVec3> {
-        self.positions.iter().zip(&self.normals).map(|(p, n)| *p + *n * margin).collect()
+        self.positions
+            .iter()
+            .zip(&self.normals)
+            .map(|(p, n)| *p + *n * margin)
+            .collect()
     }
 
     /// Number of triangles.

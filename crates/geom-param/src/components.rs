@@ -40,8 +40,11 @@ pub struct SurfaceComponent {
 pub fn partition(solid: &Solid) -> Vec<SurfaceComponent> {
     let n = solid.faces.len();
     let mut sets = DisjointSets::new(n);
-    let mut concave: Vec<bool> =
-        solid.faces.iter().map(|f| f.convexity == FaceConvexity::Concave).collect();
+    let mut concave: Vec<bool> = solid
+        .faces
+        .iter()
+        .map(|f| f.convexity == FaceConvexity::Concave)
+        .collect();
     let faces_of = |e: &crate::solid::Edge| (e.uses[0].face.0 as usize, e.uses[1].face.0 as usize);
 
     // Concave faces join across any edge.
@@ -111,7 +114,11 @@ pub fn partition(solid: &Solid) -> Vec<SurfaceComponent> {
             vertices.dedup();
             SurfaceComponent {
                 id: ComponentId(u32::try_from(k).expect("fewer than 2^32 components")),
-                kind: if concave[faces[0]] { ComponentKind::Concave } else { ComponentKind::Convex },
+                kind: if concave[faces[0]] {
+                    ComponentKind::Concave
+                } else {
+                    ComponentKind::Convex
+                },
                 faces: faces.into_iter().map(|f| FaceId(f as u32)).collect(),
                 edges,
                 vertices,
@@ -127,7 +134,9 @@ struct DisjointSets {
 
 impl DisjointSets {
     fn new(n: usize) -> Self {
-        Self { parent: (0..n).collect() }
+        Self {
+            parent: (0..n).collect(),
+        }
     }
 
     fn find(&mut self, mut x: usize) -> usize {

@@ -25,7 +25,8 @@ impl ConvexHull {
     /// run GJK on, and callers treat it through its triangles instead.
     #[must_use]
     pub fn of_mesh(mesh: &ComponentMesh) -> Option<Self> {
-        let (points, triangles) = parry3d_f64::transformation::try_convex_hull(&mesh.positions).ok()?;
+        let (points, triangles) =
+            parry3d_f64::transformation::try_convex_hull(&mesh.positions).ok()?;
         if triangles.len() < 4 {
             return None;
         }
@@ -57,7 +58,13 @@ impl ConvexHull {
             adjacency.extend(list);
             adjacency_offsets.push(adjacency.len() as u32);
         }
-        Some(Self { points, mesh_vertices, triangles, adjacency_offsets, adjacency })
+        Some(Self {
+            points,
+            mesh_vertices,
+            triangles,
+            adjacency_offsets,
+            adjacency,
+        })
     }
 
     /// Hull vertices joined to hull vertex `vertex` by a hull edge.

@@ -29,7 +29,11 @@ pub fn classify_revolved_face(segment: &ProfileSegment, scale: f64) -> FaceConve
         let meridian = p.signed_curvature() * scale;
         slope < -SIGN_EPS || meridian < -SIGN_EPS
     });
-    if concave { FaceConvexity::Concave } else { FaceConvexity::Convex }
+    if concave {
+        FaceConvexity::Concave
+    } else {
+        FaceConvexity::Convex
+    }
 }
 
 /// Classifies the edge circle where `before` ends and `after` starts, from the turn of the

@@ -32,7 +32,11 @@ impl ParamRange {
             let period = self.max - self.min;
             let wrapped = (t - self.min).rem_euclid(period) + self.min;
             // rem_euclid can round up to exactly `max` for tiny negative inputs.
-            if wrapped >= self.max { self.min } else { wrapped }
+            if wrapped >= self.max {
+                self.min
+            } else {
+                wrapped
+            }
         } else {
             t.clamp(self.min, self.max)
         }

@@ -79,7 +79,11 @@ impl ObjectDescription {
     /// [`LoadError::Profile`] for an invalid profile, [`LoadError::Model`] for unusable options.
     pub fn build(&self, options: &MeshOptions) -> Result<ObjectModel, LoadError> {
         let profile = Profile::new(&self.profile)?;
-        Ok(ObjectModel::from_profile(self.name.clone(), profile, options)?)
+        Ok(ObjectModel::from_profile(
+            self.name.clone(),
+            profile,
+            options,
+        )?)
     }
 }
 
@@ -98,7 +102,7 @@ mod json {
         pub fn from_json(text: &str) -> Result<Self, LoadError> {
             let value: Value = serde_json::from_str(text).map_err(|e| LoadError::Syntax {
                 line: e.line(),
-                column: e.column(),
+                column: e.column().max(1),
                 message: e.to_string(),
             })?;
             Self::from_json_value(&value, "object")
@@ -113,7 +117,12 @@ mod json {
             let name = match map.get("name") {
                 Some(Value::String(s)) => s.clone(),
                 Some(_) => return Err(wrong(format!("{path}.name"), "a string")),
-                None => return Err(LoadError::MissingField { path: path.into(), field: "name" }),
+                None => {
+                    return Err(LoadError::MissingField {
+                        path: path.into(),
+                        field: "name",
+                    });
+                }
             };
             let note = match map.get("note") {
                 None => None,
@@ -123,14 +132,23 @@ mod json {
             let segments = match map.get("profile") {
                 Some(Value::Array(items)) => items,
                 Some(_) => return Err(wrong(format!("{path}.profile"), "an array of segments")),
-                None => return Err(LoadError::MissingField { path: path.into(), field: "profile" }),
+                None => {
+                    return Err(LoadError::MissingField {
+                        path: path.into(),
+                        field: "profile",
+                    });
+                }
             };
             let profile = segments
                 .iter()
                 .enumerate()
                 .map(|(i, s)| segment(s, &format!("{path}.profile[{i}]")))
                 .collect::<Result<_, _>>()?;
-            Ok(Self { name, note, profile })
+            Ok(Self {
+                name,
+                note,
+                profile,
+            })
         }
 
         /// Writes the object file format (pretty-printed, trailing newline).
@@ -141,7 +159,12 @@ mod json {
                 .iter()
                 .map(|s| match *s {
                     SegmentSpec::Line { from, to } => json!({"line": {"from": from, "to": to}}),
-                    SegmentSpec::Arc { center, from, to, ccw } => json!({"arc": {
+                    SegmentSpec::Arc {
+                        center,
+                        from,
+                        to,
+                        ccw,
+                    } => json!({"arc": {
                         "center": center, "from": from, "to": to, "ccw": ccw}}),
                     SegmentSpec::Bezier { points } => json!({"bezier": {"points": points}}),
                 })
@@ -163,18 +186,32 @@ mod json {
         LoadError::WrongType { path, expected }
     }
 
-    fn object<'a>(value: &'a Value, path: &str, allowed: &[&str]) -> Result<&'a Map<String, Value>, LoadError> {
+    fn object<'a>(
+        value: &'a Value,
+        path: &str,
+        allowed: &[&str],
+    ) -> Result<&'a Map<String, Value>, LoadError> {
         let Value::Object(map) = value else {
             return Err(wrong(path.into(), "an object"));
         };
         if let Some(field) = map.keys().find(|k| !allowed.contains(&k.as_str())) {
-            return Err(LoadError::UnknownField { path: path.into(), field: field.clone() });
+            return Err(LoadError::UnknownField {
+                path: path.into(),
+                field: field.clone(),
+            });
         }
         Ok(map)
     }
 
-    fn field<'a>(map: &'a Map<String, Value>, path: &str, name: &'static str) -> Result<&'a Value, LoadError> {
-        map.get(name).ok_or_else(|| LoadError::MissingField { path: path.into(), field: name })
+    fn field<'a>(
+        map: &'a Map<String, Value>,
+        path: &str,
+        name: &'static str,
+    ) -> Result<&'a Value, LoadError> {
+        map.get(name).ok_or_else(|| LoadError::MissingField {
+            path: path.into(),
+            field: name,
+        })
     }
 
     fn point(value: &Value, path: String) -> Result<[f64; 2], LoadError> {

@@ -3,7 +3,7 @@
 //! Everything here is preprocessing, done once per object and shared by all queries.
 
 use crate::component_mesh::ComponentMesh;
-use crate::components::{partition, ComponentKind, SurfaceComponent};
+use crate::components::{ComponentKind, SurfaceComponent, partition};
 use crate::convex_hull::ConvexHull;
 use crate::feature::{ComponentId, FaceId};
 use crate::profile::Profile;
@@ -21,7 +21,9 @@ pub struct MeshOptions {
 impl Default for MeshOptions {
     /// 0.05 mm: sub-millimetre meshes of hand-sized objects with a few thousand triangles each.
     fn default() -> Self {
-        Self { chordal_tolerance: 0.05 }
+        Self {
+            chordal_tolerance: 0.05,
+        }
     }
 }
 
@@ -30,7 +32,9 @@ impl Default for MeshOptions {
 pub enum ModelError {
     /// The chordal tolerance is not finite, not positive, or so small against the object
     /// (below 1e-7 of its size) that the mesh would not fit in memory.
-    #[error("chordal tolerance {tolerance} mm is not usable for an object of size {scale} mm (needs a finite value in [1e-7, 1] x size)")]
+    #[error(
+        "chordal tolerance {tolerance} mm is not usable for an object of size {scale} mm (needs a finite value in [1e-7, 1] x size)"
+    )]
     BadTolerance {
         /// The requested tolerance (mm).
         tolerance: f64,
@@ -78,8 +82,10 @@ impl ObjectModel {
         let solid = revolve(&profile);
         let components = partition(&solid);
         let tessellation = tessellate(&profile, tolerance);
-        let meshes: Vec<ComponentMesh> =
-            components.iter().map(|c| tessellation.component_mesh(c)).collect();
+        let meshes: Vec<ComponentMesh> = components
+            .iter()
+            .map(|c| tessellation.component_mesh(c))
+            .collect();
         let hulls = components
             .iter()
             .zip(&meshes)

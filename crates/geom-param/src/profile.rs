@@ -59,7 +59,9 @@ impl SegmentSpec {
     fn coordinates(&self) -> Vec<f64> {
         match *self {
             Self::Line { from, to } => vec![from[0], from[1], to[0], to[1]],
-            Self::Arc { center, from, to, .. } => {
+            Self::Arc {
+                center, from, to, ..
+            } => {
                 vec![center[0], center[1], from[0], from[1], to[0], to[1]]
             }
             Self::Bezier { points } => points.iter().flatten().copied().collect(),
@@ -98,7 +100,10 @@ impl Profile {
         }
         for (i, spec) in specs.iter().enumerate() {
             if spec.coordinates().iter().any(|c| !c.is_finite()) {
-                return Err(ProfileError::NotFinite { segment: i, kind: spec.kind() });
+                return Err(ProfileError::NotFinite {
+                    segment: i,
+                    kind: spec.kind(),
+                });
             }
         }
         let scale = specs
@@ -113,7 +118,13 @@ impl Profile {
             let (end, start) = (specs[i - 1].end(), specs[i].start());
             let gap = dist(end, start);
             if gap > eps {
-                return Err(ProfileError::Gap { segment: i, previous: i - 1, start, end, gap });
+                return Err(ProfileError::Gap {
+                    segment: i,
+                    previous: i - 1,
+                    start,
+                    end,
+                    gap,
+                });
             }
         }
         let (first, last) = (specs[0].start(), specs[specs.len() - 1].end());
@@ -122,7 +133,10 @@ impl Profile {
         } else if dist(first, last) <= eps {
             Closure::Ring
         } else {
-            return Err(ProfileError::NotClosed { start: first, end: last });
+            return Err(ProfileError::NotClosed {
+                start: first,
+                end: last,
+            });
         };
 
         let mut segments = Vec::with_capacity(specs.len());
@@ -131,7 +145,11 @@ impl Profile {
         }
         snap_joints(&mut segments, closure, eps);
 
-        let profile = Self { segments, closure, scale };
+        let profile = Self {
+            segments,
+            closure,
+            scale,
+        };
         profile.check_radius_and_axis(eps)?;
         profile.check_joints()?;
         profile.check_self_intersection(eps)?;
@@ -181,7 +199,9 @@ impl Profile {
             ProfileSegment::Arc(a) => (a.sweep.abs() / 2f64.to_radians()).ceil().max(2.0) as usize,
             ProfileSegment::Bezier(_) => 64,
         };
-        (0..=pieces).map(|k| segment.eval(k as f64 / pieces as f64).point).collect()
+        (0..=pieces)
+            .map(|k| segment.eval(k as f64 / pieces as f64).point)
+            .collect()
     }
 
     fn signed_area(&self) -> f64 {
@@ -202,11 +222,20 @@ impl Profile {
             let kind = segment.kind_name();
             let mut samples = segment.sign_breakpoints();
             samples.extend((1..32).map(|k| f64::from(k) / 32.0));
+            // The samples include every extremum of r (sign_breakpoints), so this is the minimum.
+            let min_r = samples
+                .iter()
+                .map(|&s| segment.eval(s).point.x)
+                .fold(f64::INFINITY, f64::min);
+            if min_r < -eps {
+                return Err(ProfileError::NegativeRadius {
+                    segment: i,
+                    kind,
+                    r: min_r,
+                });
+            }
             for &s in &samples {
                 let r = segment.eval(s).point.x;
-                if r < -eps {
-                    return Err(ProfileError::NegativeRadius { segment: i, kind, r });
-                }
                 let is_profile_end = self.closure == Closure::Axis
                     && ((i == 0 && s == 0.0) || (i == n - 1 && s == 1.0));
                 if r <= eps && !is_profile_end {
@@ -214,14 +243,18 @@ impl Profile {
                 }
             }
             // Zero speed anywhere (a Bezier with a collapsed control leg) leaves no tangent.
-            let length_scale = segment.start().distance(segment.end()).max(match segment {
+            let length_scale = match segment {
+                ProfileSegment::Line(l) => l.from.distance(l.to),
                 ProfileSegment::Arc(a) => a.radius * a.sweep.abs(),
-                _ => 0.0,
-            });
+                // The control polygon's length: a closed Bezier has a zero chord but not length.
+                ProfileSegment::Bezier(b) => b.points.windows(2).map(|w| w[0].distance(w[1])).sum(),
+            };
             if length_scale <= eps {
                 return Err(ProfileError::ZeroLength { segment: i, kind });
             }
-            if (0..=16).any(|k| segment.eval(f64::from(k) / 16.0).d1.length() <= 1e-6 * length_scale) {
+            if (0..=16)
+                .any(|k| segment.eval(f64::from(k) / 16.0).d1.length() <= 1e-6 * length_scale)
+            {
                 return Err(ProfileError::ZeroLength { segment: i, kind });
             }
         }
@@ -233,7 +266,10 @@ impl Profile {
             let a = self.segments[i].eval(1.0).d1.normalize();
             let b = self.segments[j].eval(0.0).d1.normalize();
             if a.dot(b) < -1.0 + 1e-9 {
-                return Err(ProfileError::Cusp { first: i, second: j });
+                return Err(ProfileError::Cusp {
+                    first: i,
+                    second: j,
+                });
             }
         }
         Ok(())
@@ -288,13 +324,25 @@ fn build_segment(i: usize, spec: &SegmentSpec, eps: f64) -> Result<ProfileSegmen
             if DVec2::from(from).distance(DVec2::from(to)) <= eps {
                 return Err(ProfileError::ZeroLength { segment: i, kind });
             }
-            ProfileSegment::Line(LineSegment { from: from.into(), to: to.into() })
+            ProfileSegment::Line(LineSegment {
+                from: from.into(),
+                to: to.into(),
+            })
         }
-        SegmentSpec::Arc { center, from, to, ccw } => {
+        SegmentSpec::Arc {
+            center,
+            from,
+            to,
+            ccw,
+        } => {
             let (c, f, t) = (DVec2::from(center), DVec2::from(from), DVec2::from(to));
             let (from_radius, to_radius) = (f.distance(c), t.distance(c));
             if (from_radius - to_radius).abs() > eps {
-                return Err(ProfileError::ArcRadiusMismatch { segment: i, from_radius, to_radius });
+                return Err(ProfileError::ArcRadiusMismatch {
+                    segment: i,
+                    from_radius,
+                    to_radius,
+                });
             }
             if from_radius <= eps || f.distance(t) <= eps {
                 // A collapsed arc, or a full circle (which would close on itself).
@@ -302,9 +350,9 @@ fn build_segment(i: usize, spec: &SegmentSpec, eps: f64) -> Result<ProfileSegmen
             }
             ProfileSegment::Arc(ArcSegment::from_endpoints(c, f, t, ccw))
         }
-        SegmentSpec::Bezier { points } => {
-            ProfileSegment::Bezier(CubicBezier { points: points.map(DVec2::from) })
-        }
+        SegmentSpec::Bezier { points } => ProfileSegment::Bezier(CubicBezier {
+            points: points.map(DVec2::from),
+        }),
     })
 }
 

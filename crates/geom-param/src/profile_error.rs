@@ -16,7 +16,9 @@ pub enum ProfileError {
         kind: &'static str,
     },
     /// A segment does not start where the previous one ends.
-    #[error("segment {segment} starts at {start:?} but segment {previous} ends at {end:?} (gap of {gap:e} mm)")]
+    #[error(
+        "segment {segment} starts at {start:?} but segment {previous} ends at {end:?} (gap of {gap:e} mm)"
+    )]
     Gap {
         /// Segment whose start is off.
         segment: usize,
@@ -30,7 +32,9 @@ pub enum ProfileError {
         gap: f64,
     },
     /// A segment (or the arc's span) reaches r < 0.
-    #[error("segment {segment} ({kind}) reaches r = {r} < 0: profiles live in the half-plane r >= 0")]
+    #[error(
+        "segment {segment} ({kind}) reaches r = {r} < 0: profiles live in the half-plane r >= 0"
+    )]
     NegativeRadius {
         /// Offending segment.
         segment: usize,
@@ -48,7 +52,9 @@ pub enum ProfileError {
         kind: &'static str,
     },
     /// An arc's `from` and `to` are at different distances from its `center`.
-    #[error("segment {segment} (arc): `from` is {from_radius} mm from the centre but `to` is {to_radius} mm")]
+    #[error(
+        "segment {segment} (arc): `from` is {from_radius} mm from the centre but `to` is {to_radius} mm"
+    )]
     ArcRadiusMismatch {
         /// Offending segment.
         segment: usize,
@@ -84,7 +90,9 @@ pub enum ProfileError {
         second: usize,
     },
     /// The profile neither runs from the axis to the axis nor closes on itself.
-    #[error("the profile is not closed: it starts at {start:?} and ends at {end:?}; it must start and end on the axis (r = 0) or end where it starts")]
+    #[error(
+        "the profile is not closed: it starts at {start:?} and ends at {end:?}; it must start and end on the axis (r = 0) or end where it starts"
+    )]
     NotClosed {
         /// First point [r, z].
         start: [f64; 2],
@@ -92,7 +100,9 @@ pub enum ProfileError {
         end: [f64; 2],
     },
     /// The profile goes clockwise around the material (the material must be on the left).
-    #[error("the profile runs clockwise around the material (signed area {area:e} mm²); list the segments counter-clockwise, material on the left")]
+    #[error(
+        "the profile runs clockwise around the material (signed area {area:e} mm²); list the segments counter-clockwise, material on the left"
+    )]
     WrongOrientation {
         /// Signed area enclosed in the (r, z) plane (negative here).
         area: f64,

@@ -83,7 +83,12 @@ impl ArcSegment {
         let start_angle = a.y.atan2(a.x);
         let delta = (b.y.atan2(b.x) - start_angle).rem_euclid(TAU);
         let sweep = if ccw { delta } else { delta - TAU };
-        Self { center, radius: a.length(), start_angle, sweep }
+        Self {
+            center,
+            radius: a.length(),
+            start_angle,
+            sweep,
+        }
     }
 }
 
@@ -115,7 +120,9 @@ impl ProfileSegment {
                         + p1 * (3.0 * t * t * s)
                         + p2 * (3.0 * t * s * s)
                         + p3 * (s * s * s),
-                    d1: (p1 - p0) * (3.0 * t * t) + (p2 - p1) * (6.0 * t * s) + (p3 - p2) * (3.0 * s * s),
+                    d1: (p1 - p0) * (3.0 * t * t)
+                        + (p2 - p1) * (6.0 * t * s)
+                        + (p3 - p2) * (3.0 * s * s),
                     d2: (p2 - 2.0 * p1 + p0) * (6.0 * t) + (p3 - 2.0 * p2 + p1) * (6.0 * s),
                 }
             }

@@ -27,10 +27,19 @@ pub fn revolve(profile: &Profile) -> Solid {
         .map(|(i, j)| {
             let p = segments[i].end();
             Edge {
-                curve: Box::new(CircleEdge { radius: p.x, z: p.y }),
+                curve: Box::new(CircleEdge {
+                    radius: p.x,
+                    z: p.y,
+                }),
                 uses: [
-                    EdgeUse { face: FaceId(id(i)), side: ParamSide::VMax },
-                    EdgeUse { face: FaceId(id(j)), side: ParamSide::VMin },
+                    EdgeUse {
+                        face: FaceId(id(i)),
+                        side: ParamSide::VMax,
+                    },
+                    EdgeUse {
+                        face: FaceId(id(j)),
+                        side: ParamSide::VMin,
+                    },
                 ],
                 convexity: classify_joint(&segments[i], &segments[j]),
             }
@@ -62,12 +71,24 @@ pub fn revolve(profile: &Profile) -> Solid {
     let vertices = if axis {
         let (start, end) = (segments[0].start(), segments[n - 1].end());
         vec![
-            Vertex { point: DVec3::new(0.0, 0.0, start.y), faces: vec![FaceId(0)], edges: vec![] },
-            Vertex { point: DVec3::new(0.0, 0.0, end.y), faces: vec![FaceId(id(n - 1))], edges: vec![] },
+            Vertex {
+                point: DVec3::new(0.0, 0.0, start.y),
+                faces: vec![FaceId(0)],
+                edges: vec![],
+            },
+            Vertex {
+                point: DVec3::new(0.0, 0.0, end.y),
+                faces: vec![FaceId(id(n - 1))],
+                edges: vec![],
+            },
         ]
     } else {
         Vec::new()
     };
 
-    Solid { faces, edges, vertices }
+    Solid {
+        faces,
+        edges,
+        vertices,
+    }
 }

@@ -62,8 +62,16 @@ impl Surface for RevolvedSurface {
 
     fn domain(&self) -> [ParamRange; 2] {
         [
-            ParamRange { min: 0.0, max: TAU, periodic: true },
-            ParamRange { min: 0.0, max: 1.0, periodic: false },
+            ParamRange {
+                min: 0.0,
+                max: TAU,
+                periodic: true,
+            },
+            ParamRange {
+                min: 0.0,
+                max: 1.0,
+                periodic: false,
+            },
         ]
     }
 
@@ -88,6 +96,9 @@ impl Surface for RevolvedSurface {
             AxisState::Pole => meridian,
             AxisState::OffAxis => p.d1.y / (p.point.x * p.d1.length()),
         };
-        Some(PrincipalCurvatures { min: meridian.min(parallel), max: meridian.max(parallel) })
+        Some(PrincipalCurvatures {
+            min: meridian.min(parallel),
+            max: meridian.max(parallel),
+        })
     }
 }

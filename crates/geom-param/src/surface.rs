@@ -48,17 +48,26 @@ impl SurfacePoint {
     /// `n`, or `None` where the first fundamental form is singular (EG - F² = 0).
     #[must_use]
     pub fn principal_curvatures_with(&self, n: DVec3) -> Option<PrincipalCurvatures> {
-        let (e, f, g) = (self.du.dot(self.du), self.du.dot(self.dv), self.dv.dot(self.dv));
+        let (e, f, g) = (
+            self.du.dot(self.du),
+            self.du.dot(self.dv),
+            self.dv.dot(self.dv),
+        );
         let (l, m, nn) = (self.duu.dot(n), self.duv.dot(n), self.dvv.dot(n));
         let det = e * g - f * f;
-        if !(det > f64::EPSILON * e * g) {
+        // Also rejects NaN derivatives: every comparison with NaN is false.
+        let regular = det > f64::EPSILON * e * g;
+        if !regular {
             return None;
         }
         // Mean and Gauss curvature of -I⁻¹ II.
         let mean = -(e * nn - 2.0 * f * m + g * l) / (2.0 * det);
         let gauss = (l * nn - m * m) / det;
         let disc = (mean * mean - gauss).max(0.0).sqrt();
-        Some(PrincipalCurvatures { min: mean - disc, max: mean + disc })
+        Some(PrincipalCurvatures {
+            min: mean - disc,
+            max: mean + disc,
+        })
     }
 }
 

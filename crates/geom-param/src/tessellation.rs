@@ -84,15 +84,22 @@ fn count_for_radius(r: f64, budget: f64) -> usize {
 }
 
 fn chord_error(ring: &Ring) -> f64 {
-    if ring.count <= 1 { 0.0 } else { ring.point.x * (1.0 - (PI / ring.count as f64).cos()) }
+    if ring.count <= 1 {
+        0.0
+    } else {
+        ring.point.x * (1.0 - (PI / ring.count as f64).cos())
+    }
 }
 
 fn initial_pieces(segment: &ProfileSegment, budget: f64) -> usize {
     match segment {
         ProfileSegment::Line(_) => 1,
         ProfileSegment::Arc(a) => {
-            let max_angle =
-                if budget >= a.radius { PI } else { 2.0 * (1.0 - budget / a.radius).acos() };
+            let max_angle = if budget >= a.radius {
+                PI
+            } else {
+                2.0 * (1.0 - budget / a.radius).acos()
+            };
             ((a.sweep.abs() / max_angle).ceil() as usize).clamp(1, MAX_RINGS_PER_SEGMENT / 2)
         }
         ProfileSegment::Bezier(_) => 8,
@@ -118,13 +125,26 @@ pub(crate) fn tessellate(profile: &Profile, tolerance: f64) -> ProfileTessellati
     let joint_ring: Vec<usize> = joints
         .iter()
         .enumerate()
-        .map(|(k, &(i, _))| ring(segments[i].end(), RingKind::Joint(EdgeId(k as u32)), &mut rings))
+        .map(|(k, &(i, _))| {
+            ring(
+                segments[i].end(),
+                RingKind::Joint(EdgeId(k as u32)),
+                &mut rings,
+            )
+        })
         .collect();
     let axis = profile.closure() == Closure::Axis;
     let (first_pole, last_pole) = if axis {
-        let a = ring(DVec2::new(0.0, segments[0].start().y), RingKind::Pole(VertexId(0)), &mut rings);
-        let b =
-            ring(DVec2::new(0.0, segments[n - 1].end().y), RingKind::Pole(VertexId(1)), &mut rings);
+        let a = ring(
+            DVec2::new(0.0, segments[0].start().y),
+            RingKind::Pole(VertexId(0)),
+            &mut rings,
+        );
+        let b = ring(
+            DVec2::new(0.0, segments[n - 1].end().y),
+            RingKind::Pole(VertexId(1)),
+            &mut rings,
+        );
         (a, b)
     } else {
         (usize::MAX, usize::MAX)
@@ -137,12 +157,19 @@ pub(crate) fn tessellate(profile: &Profile, tolerance: f64) -> ProfileTessellati
             (0, false) => joint_ring[n - 1],
             _ => joint_ring[i - 1],
         };
-        let end_ring = if axis && i == n - 1 { last_pole } else { joint_ring[i] };
+        let end_ring = if axis && i == n - 1 {
+            last_pole
+        } else {
+            joint_ring[i]
+        };
         let pieces = initial_pieces(segment, 0.5 * budget);
         let mut list = vec![(0.0, start_ring)];
         for k in 1..pieces {
             let s = k as f64 / pieces as f64;
-            list.push((s, ring(segment.eval(s).point, RingKind::Interior, &mut rings)));
+            list.push((
+                s,
+                ring(segment.eval(s).point, RingKind::Interior, &mut rings),
+            ));
         }
         list.push((1.0, end_ring));
         per_segment.push(list);
@@ -162,7 +189,11 @@ pub(crate) fn tessellate(profile: &Profile, tolerance: f64) -> ProfileTessellati
             (triangles, error)
         })
         .collect();
-    ProfileTessellation { rings: set, faces, segments }
+    ProfileTessellation {
+        rings: set,
+        faces,
+        segments,
+    }
 }
 
 fn refine(set: &mut RingSet, segments: &[ProfileSegment], budget: f64) {
@@ -183,9 +214,15 @@ fn refine(set: &mut RingSet, segments: &[ProfileSegment], budget: f64) {
                     .collect();
                 if !over.is_empty() {
                     bump.extend(over.into_iter().map(|k| (k, grow(set.rings[k].count))));
-                } else if a.count > 1 && b.count > 1 && a.count.max(b.count) > 2 * a.count.min(b.count) {
-                    let (small, large) =
-                        if a.count < b.count { (w[0].1, b.count) } else { (w[1].1, a.count) };
+                } else if a.count > 1
+                    && b.count > 1
+                    && a.count.max(b.count) > 2 * a.count.min(b.count)
+                {
+                    let (small, large) = if a.count < b.count {
+                        (w[0].1, b.count)
+                    } else {
+                        (w[1].1, a.count)
+                    };
                     bump.push((small, large.div_ceil(2)));
                 } else if list.len() < MAX_RINGS_PER_SEGMENT {
                     inserts.push((i, p + 1, 0.5 * (w[0].0 + w[1].0)));
@@ -201,9 +238,15 @@ fn refine(set: &mut RingSet, segments: &[ProfileSegment], budget: f64) {
         for &(i, position, s) in inserts.iter().rev() {
             let point = segments[i].eval(s).point;
             let list = &set.per_segment[i];
-            let neighbours = set.rings[list[position - 1].1].count.max(set.rings[list[position].1].count);
+            let neighbours = set.rings[list[position - 1].1]
+                .count
+                .max(set.rings[list[position].1].count);
             let count = count_for_radius(point.x, 0.5 * budget).max(neighbours);
-            set.rings.push(Ring { point, count, kind: RingKind::Interior });
+            set.rings.push(Ring {
+                point,
+                count,
+                kind: RingKind::Interior,
+            });
             let index = set.rings.len() - 1;
             set.per_segment[i].insert(position, (s, index));
         }
@@ -216,8 +259,18 @@ fn zip_strip(rings: &[Ring], (s_a, a): (f64, usize), (s_b, b): (f64, usize)) -> 
     let (na, nb) = (rings[a].count, rings[b].count);
     let ua = |i: usize| TAU * i as f64 / na as f64;
     let ub = |j: usize| TAU * j as f64 / nb as f64;
-    let ca = |i: usize, u: f64| Corner { ring: a, index: i, u, s: s_a };
-    let cb = |j: usize, u: f64| Corner { ring: b, index: j, u, s: s_b };
+    let ca = |i: usize, u: f64| Corner {
+        ring: a,
+        index: i,
+        u,
+        s: s_a,
+    };
+    let cb = |j: usize, u: f64| Corner {
+        ring: b,
+        index: j,
+        u,
+        s: s_b,
+    };
     let mut out = Vec::with_capacity(na + nb);
     if na == 1 {
         for j in 0..nb {
@@ -249,7 +302,11 @@ fn ring_vertex(ring: &Ring, index: usize) -> (usize, f64, DVec3) {
     let k = index % ring.count;
     let u = TAU * k as f64 / ring.count as f64;
     let (sin, cos) = u.sin_cos();
-    (k, u, DVec3::new(ring.point.x * cos, ring.point.x * sin, ring.point.y))
+    (
+        k,
+        u,
+        DVec3::new(ring.point.x * cos, ring.point.x * sin, ring.point.y),
+    )
 }
 
 fn surface_point(segment: &ProfileSegment, u: f64, s: f64) -> DVec3 {
@@ -305,7 +362,11 @@ impl ProfileTessellation {
                         mesh.positions.push(position);
                         mesh.normals.push(self.vertex_normal(ring, face, u, c.s));
                         mesh.vertex_locations.push(match ring.kind {
-                            RingKind::Interior => FeatureLocation::Face { id: face, u, v: c.s },
+                            RingKind::Interior => FeatureLocation::Face {
+                                id: face,
+                                u,
+                                v: c.s,
+                            },
                             RingKind::Joint(id) => FeatureLocation::Edge { id, t: u },
                             RingKind::Pole(id) => FeatureLocation::Vertex { id },
                         });
@@ -324,7 +385,10 @@ impl ProfileTessellation {
     /// direction at an apex.
     fn vertex_normal(&self, ring: &Ring, face: FaceId, u: f64, s: f64) -> DVec3 {
         let normal_on = |segment: usize, s: f64| {
-            RevolvedSurface { segment: self.segments[segment] }.normal(u, s)
+            RevolvedSurface {
+                segment: self.segments[segment],
+            }
+            .normal(u, s)
         };
         match ring.kind {
             RingKind::Interior => normal_on(face.0 as usize, s).unwrap_or(DVec3::Z),

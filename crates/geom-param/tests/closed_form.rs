@@ -58,7 +58,10 @@ struct Case {
 
 fn line(from: [f64; 2], to: [f64; 2]) -> RevolvedSurface {
     RevolvedSurface {
-        segment: ProfileSegment::Line(LineSegment { from: from.into(), to: to.into() }),
+        segment: ProfileSegment::Line(LineSegment {
+            from: from.into(),
+            to: to.into(),
+        }),
     }
 }
 
@@ -119,7 +122,11 @@ fn socket(zc: f64, r: f64) -> Case {
 /// curvatures 0 (meridian) and 1/R (parallel). Walked downwards it is a bore: everything flips.
 fn cylinder(r: f64, z0: f64, z1: f64, inner: bool) -> Case {
     let sign = if inner { -1.0 } else { 1.0 };
-    let (from, to) = if inner { ([r, z1], [r, z0]) } else { ([r, z0], [r, z1]) };
+    let (from, to) = if inner {
+        ([r, z1], [r, z0])
+    } else {
+        ([r, z0], [r, z1])
+    };
     Case {
         name: if inner { "inner cylinder" } else { "cylinder" },
         surface: line(from, to),
@@ -255,15 +262,26 @@ fn check_point(case: &Case, u: f64, v: f64) {
     if rho(s.point) > REL * case.length {
         let angle = s.point.y.atan2(s.point.x).rem_euclid(TAU);
         let diff = (angle - u).abs();
-        assert!(diff.min(TAU - diff) <= 4.0 * f64::EPSILON * TAU, "{what}: angle {angle} != u");
+        assert!(
+            diff.min(TAU - diff) <= 4.0 * f64::EPSILON * TAU,
+            "{what}: angle {angle} != u"
+        );
     }
-    let normal = case.surface.normal(u, v).unwrap_or_else(|| panic!("{what}: no normal"));
+    let normal = case
+        .surface
+        .normal(u, v)
+        .unwrap_or_else(|| panic!("{what}: no normal"));
     check_normal(normal, expected.normal, &what);
     let k = case
         .surface
         .principal_curvatures(u, v)
         .unwrap_or_else(|| panic!("{what}: no curvatures"));
-    check_curvatures(k, expected.curvatures, curvature_tol(expected.curvatures, case.length), &what);
+    check_curvatures(
+        k,
+        expected.curvatures,
+        curvature_tol(expected.curvatures, case.length),
+        &what,
+    );
 }
 
 #[test]
@@ -275,7 +293,11 @@ fn revolved_surfaces_match_closed_forms_at_random_points() {
             // Cones: stay 1 % away from the apex, where r = R (1 - v) is computed as R - R v
             // and loses log10(1/(1 - v)) digits to cancellation (2 at v = 0.99, still well
             // inside REL); the apex itself is checked separately.
-            let v = if case.name == "cone" { rng.range(0.0, 0.99) } else { rng.unit() };
+            let v = if case.name == "cone" {
+                rng.range(0.0, 0.99)
+            } else {
+                rng.unit()
+            };
             check_point(&case, u, v);
         }
         // The parameter ends (poles of the sphere, socket and disks are checked here too).
@@ -300,16 +322,25 @@ fn torus_saddle_on_inner_equator() {
     for _ in 0..64 {
         let u = rng.range(0.0, TAU);
         check_point(&case, u, v_inner);
-        let k = case.surface.principal_curvatures(u, v_inner).expect("curvatures");
+        let k = case
+            .surface
+            .principal_curvatures(u, v_inner)
+            .expect("curvatures");
         let tol = REL / a;
         assert!((k.max - 1.0 / a).abs() <= tol, "{k:?}");
         assert!((k.min + 1.0 / (rc - a)).abs() <= tol, "{k:?}");
-        assert!(k.min * k.max < 0.0, "Gaussian curvature must be negative: {k:?}");
+        assert!(
+            k.min * k.max < 0.0,
+            "Gaussian curvature must be negative: {k:?}"
+        );
         let n = case.surface.normal(u, v_inner).expect("normal");
         check_normal(n, DVec3::new(-u.cos(), -u.sin(), 0.0), "inner equator");
 
         check_point(&case, u, v_outer);
-        let k = case.surface.principal_curvatures(u, v_outer).expect("curvatures");
+        let k = case
+            .surface
+            .principal_curvatures(u, v_outer)
+            .expect("curvatures");
         assert!((k.max - 1.0 / a).abs() <= tol, "{k:?}");
         assert!((k.min - 1.0 / (rc + a)).abs() <= tol, "{k:?}");
     }
@@ -365,7 +396,10 @@ fn default_fundamental_form_curvatures_agree_with_override() {
             let kappa = over.min.abs().max(over.max.abs()).max(1.0 / case.length);
             let (h_over, h_dflt) = (0.5 * (over.min + over.max), 0.5 * (dflt.min + dflt.max));
             let (k_over, k_dflt) = (over.min * over.max, dflt.min * dflt.max);
-            assert!((h_over - h_dflt).abs() <= REL * kappa, "{what}: H {h_dflt} vs {h_over}");
+            assert!(
+                (h_over - h_dflt).abs() <= REL * kappa,
+                "{what}: H {h_dflt} vs {h_over}"
+            );
             assert!(
                 (k_over - k_dflt).abs() <= REL * kappa * kappa,
                 "{what}: K {k_dflt} vs {k_over}"
@@ -385,7 +419,9 @@ fn default_fundamental_form_curvatures_agree_with_override() {
             );
         }
     }
-    eprintln!("worst relative min/max deviation of the default path at umbilics: {worst_umbilic:e}");
+    eprintln!(
+        "worst relative min/max deviation of the default path at umbilics: {worst_umbilic:e}"
+    );
 }
 
 #[test]
@@ -403,7 +439,10 @@ fn sphere_poles_are_regular() {
                 let n = case.surface.normal(u, v).expect("pole normal");
                 assert!(n.is_finite(), "{what}: {n:?}");
                 check_normal(n, DVec3::new(0.0, 0.0, nz), &what);
-                let k = case.surface.principal_curvatures(u, v).expect("pole curvatures");
+                let k = case
+                    .surface
+                    .principal_curvatures(u, v)
+                    .expect("pole curvatures");
                 assert!(k.min.is_finite() && k.max.is_finite(), "{what}: {k:?}");
                 check_curvatures(k, [1.0 / r, 1.0 / r], REL / r, &what);
             }
@@ -414,14 +453,23 @@ fn sphere_poles_are_regular() {
     for (v, nz) in [(0.0, -1.0), (1.0, 1.0)] {
         let n = case.surface.normal(0.5, v).expect("socket pole normal");
         check_normal(n, DVec3::new(0.0, 0.0, nz), "socket pole");
-        let k = case.surface.principal_curvatures(0.5, v).expect("socket pole curvatures");
+        let k = case
+            .surface
+            .principal_curvatures(0.5, v)
+            .expect("socket pole curvatures");
         check_curvatures(k, [-0.2, -0.2], REL / 5.0, "socket pole");
     }
     // Disk centres are poles too: ∓z and flat.
-    for (case, nz, v) in [(disk(9.0, -2.0, true), -1.0, 0.0), (disk(9.0, 11.0, false), 1.0, 1.0)] {
+    for (case, nz, v) in [
+        (disk(9.0, -2.0, true), -1.0, 0.0),
+        (disk(9.0, 11.0, false), 1.0, 1.0),
+    ] {
         let n = case.surface.normal(2.0, v).expect("disk centre normal");
         check_normal(n, DVec3::new(0.0, 0.0, nz), case.name);
-        let k = case.surface.principal_curvatures(2.0, v).expect("disk centre curvatures");
+        let k = case
+            .surface
+            .principal_curvatures(2.0, v)
+            .expect("disk centre curvatures");
         assert!(k.min == 0.0 && k.max == 0.0, "{}: {k:?}", case.name);
     }
 }
@@ -434,17 +482,27 @@ fn cone_apex_has_no_normal_and_no_curvatures() {
             let s = case.surface.eval(u, 1.0);
             assert_eq!(s.point, DVec3::new(0.0, 0.0, h), "apex point");
             assert!(
-                [s.du, s.dv, s.duu, s.duv, s.dvv].iter().all(|d| d.is_finite()),
+                [s.du, s.dv, s.duu, s.duv, s.dvv]
+                    .iter()
+                    .all(|d| d.is_finite()),
                 "derivatives at the apex: {s:?}"
             );
             assert_eq!(case.surface.normal(u, 1.0), None, "apex normal");
-            assert_eq!(case.surface.principal_curvatures(u, 1.0), None, "apex curvatures");
+            assert_eq!(
+                case.surface.principal_curvatures(u, 1.0),
+                None,
+                "apex curvatures"
+            );
         }
         // Just off the apex the normal is still the cone's.
         let v = 1.0 - 1e-6;
         let n = case.surface.normal(0.3, v).expect("normal near the apex");
         let l = r.hypot(h);
-        check_normal(n, DVec3::new(h * 0.3_f64.cos(), h * 0.3_f64.sin(), r) / l, "near apex");
+        check_normal(
+            n,
+            DVec3::new(h * 0.3_f64.cos(), h * 0.3_f64.sin(), r) / l,
+            "near apex",
+        );
     }
 }
 
@@ -465,21 +523,39 @@ fn circle_edge_matches_formula() {
             let d1 = DVec3::new(-radius * sin, radius * cos, 0.0);
             let d2 = DVec3::new(-radius * cos, -radius * sin, 0.0);
             assert!((c.point - p).length() <= tol, "{what}: point {:?}", c.point);
-            assert!((c.d1 - d1).length() <= REL * radius, "{what}: d1 {:?}", c.d1);
-            assert!((c.d2 - d2).length() <= REL * radius, "{what}: d2 {:?}", c.d2);
+            assert!(
+                (c.d1 - d1).length() <= REL * radius,
+                "{what}: d1 {:?}",
+                c.d1
+            );
+            assert!(
+                (c.d2 - d2).length() <= REL * radius,
+                "{what}: d2 {:?}",
+                c.d2
+            );
             // On the circle: distance r from the axis at height z.
             assert!((rho(c.point) - radius).abs() <= REL * radius, "{what}");
             let tangent = edge.tangent(t).expect("tangent");
-            assert!((tangent - DVec3::new(-sin, cos, 0.0)).length() <= REL, "{what}: {tangent}");
+            assert!(
+                (tangent - DVec3::new(-sin, cos, 0.0)).length() <= REL,
+                "{what}: {tangent}"
+            );
             let k = edge.curvature(t);
-            assert!((k - 1.0 / radius).abs() <= REL / radius, "{what}: curvature {k}");
+            assert!(
+                (k - 1.0 / radius).abs() <= REL / radius,
+                "{what}: curvature {k}"
+            );
         }
     }
 }
 
 #[test]
 fn param_range_normalize_wraps_and_clamps() {
-    let u = ParamRange { min: 0.0, max: TAU, periodic: true };
+    let u = ParamRange {
+        min: 0.0,
+        max: TAU,
+        periodic: true,
+    };
     // Inside: unchanged.
     for t in [0.0, 1e-300, 1.0, PI, TAU - 1e-12] {
         assert_eq!(u.normalize(t), t, "t = {t}");
@@ -499,21 +575,35 @@ fn param_range_normalize_wraps_and_clamps() {
     for _ in 0..SAMPLES {
         let t = rng.range(-1e4, 1e4);
         let w = u.normalize(t);
-        assert!((0.0..TAU).contains(&w), "normalize({t}) = {w} outside [0, 2π)");
+        assert!(
+            (0.0..TAU).contains(&w),
+            "normalize({t}) = {w} outside [0, 2π)"
+        );
         // Same angle: t - w is a whole number of periods (up to the rounding of t itself).
         let turns = (t - w) / TAU;
-        assert!((turns - turns.round()).abs() <= 1e-11, "normalize({t}) = {w}");
+        assert!(
+            (turns - turns.round()).abs() <= 1e-11,
+            "normalize({t}) = {w}"
+        );
     }
 
     // A periodic range not starting at 0: [-π, π).
-    let a = ParamRange { min: -PI, max: PI, periodic: true };
+    let a = ParamRange {
+        min: -PI,
+        max: PI,
+        periodic: true,
+    };
     assert_eq!(a.normalize(PI), -PI);
     assert_eq!(a.normalize(0.5), 0.5);
     assert_eq!(a.normalize(-PI), -PI);
     let w = a.normalize(-PI - 1e-9);
     assert!((w - (PI - 1e-9)).abs() <= 2e-15 && w < PI, "{w}");
     // Just below min by one ulp: wraps to just below max, which rounds to max, so back to min.
-    let b = ParamRange { min: 1.0, max: 1.0 + TAU, periodic: true };
+    let b = ParamRange {
+        min: 1.0,
+        max: 1.0 + TAU,
+        periodic: true,
+    };
     let just_below = 1.0 - f64::EPSILON / 2.0;
     let w = b.normalize(just_below);
     assert!((b.min..b.max).contains(&w), "{w}");
@@ -521,7 +611,11 @@ fn param_range_normalize_wraps_and_clamps() {
     assert_eq!(w, b.min);
 
     // Non-periodic: clamped.
-    let v = ParamRange { min: 0.0, max: 1.0, periodic: false };
+    let v = ParamRange {
+        min: 0.0,
+        max: 1.0,
+        periodic: false,
+    };
     assert_eq!(v.normalize(-1e-18), 0.0);
     assert_eq!(v.normalize(-3.0), 0.0);
     assert_eq!(v.normalize(1.0 + 1e-15), 1.0);
@@ -553,7 +647,11 @@ fn profile_segment_closed_forms() {
         assert!((p.signed_curvature() - 0.2).abs() <= REL * 0.2, "s = {s}");
     }
     // from_endpoints: sweeps ccw and cw between the same points.
-    let (c, f, t) = (DVec2::new(0.0, 0.0), DVec2::new(0.0, -3.0), DVec2::new(0.0, 3.0));
+    let (c, f, t) = (
+        DVec2::new(0.0, 0.0),
+        DVec2::new(0.0, -3.0),
+        DVec2::new(0.0, 3.0),
+    );
     let ccw = ArcSegment::from_endpoints(c, f, t, true);
     let cw = ArcSegment::from_endpoints(c, f, t, false);
     assert!((ccw.sweep - PI).abs() <= 4.0 * f64::EPSILON * PI, "{ccw:?}");

@@ -3,7 +3,7 @@
 //! exact feature, measured chordal error within tolerance, watertight and outward meshes).
 
 use geom_param::{
-    Boundary, ComponentKind, FeatureLocation, MeshOptions, ObjectDescription, ObjectModel, Surface,
+    Boundary, ComponentKind, FeatureLocation, MeshOptions, ObjectDescription, ObjectModel,
 };
 use glam::DVec3;
 use serde_json::{Value, json};
@@ -13,13 +13,18 @@ use std::path::PathBuf;
 const NAMES: [&str; 6] = ["paperweight", "goblet", "bowl", "pencil", "jar", "vase"];
 
 fn fixture(name: &str) -> ObjectDescription {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../../fixtures/objects/{name}.json"));
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join(format!("../../fixtures/objects/{name}.json"));
     let text = std::fs::read_to_string(&path).expect("fixture exists");
     ObjectDescription::from_json(&text).expect("fixture parses")
 }
 
 fn model(name: &str, tolerance: f64) -> ObjectModel {
-    fixture(name).build(&MeshOptions { chordal_tolerance: tolerance }).expect("fixture builds")
+    fixture(name)
+        .build(&MeshOptions {
+            chordal_tolerance: tolerance,
+        })
+        .expect("fixture builds")
 }
 
 fn round(x: f64) -> f64 {
@@ -33,7 +38,11 @@ fn component_counts_match_the_paper() {
     for (name, count) in NAMES.iter().zip(expected) {
         let m = model(name, 0.1);
         assert_eq!(m.components.len(), count, "{name}");
-        let concave = m.components.iter().filter(|c| c.kind == ComponentKind::Concave).count();
+        let concave = m
+            .components
+            .iter()
+            .filter(|c| c.kind == ComponentKind::Concave)
+            .count();
         match *name {
             "paperweight" | "pencil" => assert_eq!(concave, 0, "{name} is all convex"),
             _ => assert!(concave >= 1, "{name} has a concave component"),
@@ -81,18 +90,22 @@ fn topology_and_components_snapshot() {
             .solid
             .vertices
             .iter()
-            .map(|v| json!({"point": [round(v.point.x), round(v.point.y), round(v.point.z)],
-                            "faces": v.faces.iter().map(|f| f.0).collect::<Vec<_>>()}))
+            .map(|v| {
+                json!({"point": [round(v.point.x), round(v.point.y), round(v.point.z)],
+                            "faces": v.faces.iter().map(|f| f.0).collect::<Vec<_>>()})
+            })
             .collect();
         let components: Vec<Value> = m
             .components
             .iter()
-            .map(|c| json!({
-                "kind": format!("{:?}", c.kind),
-                "faces": c.faces.iter().map(|f| f.0).collect::<Vec<_>>(),
-                "edges": c.edges.iter().map(|e| e.0).collect::<Vec<_>>(),
-                "vertices": c.vertices.iter().map(|v| v.0).collect::<Vec<_>>(),
-            }))
+            .map(|c| {
+                json!({
+                    "kind": format!("{:?}", c.kind),
+                    "faces": c.faces.iter().map(|f| f.0).collect::<Vec<_>>(),
+                    "edges": c.edges.iter().map(|e| e.0).collect::<Vec<_>>(),
+                    "vertices": c.vertices.iter().map(|v| v.0).collect::<Vec<_>>(),
+                })
+            })
             .collect();
         let snapshot = json!({"name": name, "faces": faces, "edges": edges, "vertices": vertices,
                               "components": components});
@@ -108,14 +121,25 @@ fn every_mesh_vertex_evaluates_back_to_its_position() {
             for (p, loc) in mesh.positions.iter().zip(&mesh.vertex_locations) {
                 let exact = m.solid.point_at(loc);
                 let scale = p.length().max(1.0);
-                assert!(exact.distance(*p) <= 1e-12 * scale, "{name}: {loc:?} at {p} vs {exact}");
+                assert!(
+                    exact.distance(*p) <= 1e-12 * scale,
+                    "{name}: {loc:?} at {p} vs {exact}"
+                );
             }
             // Corner parameters of each triangle evaluate to its corners too.
-            for ((t, params), face) in mesh.triangles.iter().zip(&mesh.triangle_params).zip(&mesh.triangle_faces) {
+            for ((t, params), face) in mesh
+                .triangles
+                .iter()
+                .zip(&mesh.triangle_params)
+                .zip(&mesh.triangle_faces)
+            {
                 for k in 0..3 {
                     let q = mesh.positions[t[k] as usize];
                     let p = m.solid.eval_face(*face, params[k][0], params[k][1]).point;
-                    assert!(p.distance(q) <= 1e-12 * q.length().max(1.0), "{name}: corner {k} of a triangle on {face:?}");
+                    assert!(
+                        p.distance(q) <= 1e-12 * q.length().max(1.0),
+                        "{name}: corner {k} of a triangle on {face:?}"
+                    );
                 }
             }
         }
@@ -127,11 +151,20 @@ fn every_mesh_vertex_evaluates_back_to_its_position() {
 fn measured_chordal_error(m: &ObjectModel, mesh: &geom_param::ComponentMesh) -> f64 {
     const N: usize = 8;
     let mut worst = 0.0_f64;
-    for ((t, params), face) in mesh.triangles.iter().zip(&mesh.triangle_params).zip(&mesh.triangle_faces) {
+    for ((t, params), face) in mesh
+        .triangles
+        .iter()
+        .zip(&mesh.triangle_params)
+        .zip(&mesh.triangle_faces)
+    {
         let p = t.map(|i| mesh.positions[i as usize]);
         for i in 0..=N {
             for j in 0..=N - i {
-                let b = [i as f64 / N as f64, j as f64 / N as f64, (N - i - j) as f64 / N as f64];
+                let b = [
+                    i as f64 / N as f64,
+                    j as f64 / N as f64,
+                    (N - i - j) as f64 / N as f64,
+                ];
                 let u = b[0] * params[0][0] + b[1] * params[1][0] + b[2] * params[2][0];
                 let v = b[0] * params[0][1] + b[1] * params[1][1] + b[2] * params[2][1];
                 let exact = m.solid.eval_face(*face, u, v).point;
@@ -150,8 +183,15 @@ fn measured_chordal_error_is_within_the_requested_tolerance() {
             let m = model(name, tolerance);
             for mesh in &m.meshes {
                 let measured = measured_chordal_error(&m, mesh);
-                assert!(measured <= tolerance, "{name} at {tolerance}: measured {measured}");
-                assert!(mesh.chordal_error <= tolerance, "{name}: reported {}", mesh.chordal_error);
+                assert!(
+                    measured <= tolerance,
+                    "{name} at {tolerance}: measured {measured}"
+                );
+                assert!(
+                    mesh.chordal_error <= tolerance,
+                    "{name}: reported {}",
+                    mesh.chordal_error
+                );
             }
         }
     }
@@ -204,8 +244,16 @@ fn vertex_normals_are_unit_and_outward_on_faces() {
             for (n, loc) in mesh.normals.iter().zip(&mesh.vertex_locations) {
                 assert!((n.length() - 1.0).abs() < 1e-12, "{name}: normal not unit");
                 if let FeatureLocation::Face { id, u, v } = *loc {
-                    let exact = m.solid.face(id).surface.normal(u, v).expect("regular point");
-                    assert!(n.distance(exact) < 1e-12, "{name}: normal differs from exact");
+                    let exact = m
+                        .solid
+                        .face(id)
+                        .surface
+                        .normal(u, v)
+                        .expect("regular point");
+                    assert!(
+                        n.distance(exact) < 1e-12,
+                        "{name}: normal differs from exact"
+                    );
                 }
             }
             // The triangle normal agrees in sign with the vertex normals (outward triangles).
