@@ -15,13 +15,20 @@ pub const FIXTURE_OBJ_TOLERANCE: f64 = 0.1;
 /// A message if a paper object fails to build (a bug in its definition).
 pub fn generate_fixtures() -> Result<Vec<(PathBuf, String)>, String> {
     let mut files = Vec::new();
-    let options = MeshOptions { chordal_tolerance: FIXTURE_OBJ_TOLERANCE };
+    let options = MeshOptions {
+        chordal_tolerance: FIXTURE_OBJ_TOLERANCE,
+    };
     for description in paper_objects::paper_objects() {
         let name = description.name.clone();
-        let model = description.build(&options).map_err(|e| format!("{name}: {e}"))?;
+        let model = description
+            .build(&options)
+            .map_err(|e| format!("{name}: {e}"))?;
         let dir = Path::new("fixtures/objects");
         files.push((dir.join(format!("{name}.json")), description.to_json()));
-        files.push((dir.join(format!("{name}.obj")), obj::to_obj(&model, paper_objects::GENERATED_NOTE)));
+        files.push((
+            dir.join(format!("{name}.obj")),
+            obj::to_obj(&model, paper_objects::GENERATED_NOTE),
+        ));
     }
     Ok(files)
 }

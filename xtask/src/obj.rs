@@ -23,7 +23,13 @@ pub fn to_obj(model: &ObjectModel, header: &str) -> String {
             let _ = writeln!(out, "v {} {} {}", round(p.x), round(p.y), round(p.z));
         }
         for t in &mesh.triangles {
-            let _ = writeln!(out, "f {} {} {}", t[0] as usize + base, t[1] as usize + base, t[2] as usize + base);
+            let _ = writeln!(
+                out,
+                "f {} {} {}",
+                t[0] as usize + base,
+                t[1] as usize + base,
+                t[2] as usize + base
+            );
         }
         base += mesh.positions.len();
     }

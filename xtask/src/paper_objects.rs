@@ -15,7 +15,12 @@ fn line(from: [f64; 2], to: [f64; 2]) -> SegmentSpec {
 }
 
 fn arc(center: [f64; 2], from: [f64; 2], to: [f64; 2], ccw: bool) -> SegmentSpec {
-    SegmentSpec::Arc { center, from, to, ccw }
+    SegmentSpec::Arc {
+        center,
+        from,
+        to,
+        ccw,
+    }
 }
 
 /// The point at `degrees` on the circle about `center` of radius `radius`.
@@ -29,7 +34,11 @@ fn bezier(points: [[f64; 2]; 4]) -> SegmentSpec {
 }
 
 fn object(name: &str, profile: Vec<SegmentSpec>) -> ObjectDescription {
-    ObjectDescription { name: name.into(), note: Some(GENERATED_NOTE.into()), profile }
+    ObjectDescription {
+        name: name.into(),
+        note: Some(GENERATED_NOTE.into()),
+        profile,
+    }
 }
 
 /// Paperweight (70 mm wide, 56 mm tall): a rounded base, a neck and a ball, meeting at concave
@@ -37,32 +46,43 @@ fn object(name: &str, profile: Vec<SegmentSpec>) -> ObjectDescription {
 fn paperweight() -> ObjectDescription {
     let (ball_r, neck_r, neck_top) = (18.0_f64, 8.0, 20.0);
     let ball_z = neck_top + (ball_r * ball_r - neck_r * neck_r).sqrt();
-    object("paperweight", vec![
-        line([0.0, 0.0], [32.0, 0.0]),
-        arc([32.0, 3.0], [32.0, 0.0], [35.0, 3.0], true),
-        line([35.0, 3.0], [35.0, 9.0]),
-        arc([32.0, 9.0], [35.0, 9.0], [32.0, 12.0], true),
-        line([32.0, 12.0], [neck_r, 12.0]),
-        line([neck_r, 12.0], [neck_r, neck_top]),
-        arc([0.0, ball_z], [neck_r, neck_top], [0.0, ball_z + ball_r], true),
-    ])
+    object(
+        "paperweight",
+        vec![
+            line([0.0, 0.0], [32.0, 0.0]),
+            arc([32.0, 3.0], [32.0, 0.0], [35.0, 3.0], true),
+            line([35.0, 3.0], [35.0, 9.0]),
+            arc([32.0, 9.0], [35.0, 9.0], [32.0, 12.0], true),
+            line([32.0, 12.0], [neck_r, 12.0]),
+            line([neck_r, 12.0], [neck_r, neck_top]),
+            arc(
+                [0.0, ball_z],
+                [neck_r, neck_top],
+                [0.0, ball_z + ball_r],
+                true,
+            ),
+        ],
+    )
 }
 
 /// Goblet-shaped solid (76 mm wide, 150 mm tall): foot, concave foot top, stem, knot, upper
 /// stem, concave flare, cup with rim, and the cup's concave inside: 8 components.
 fn goblet() -> ObjectDescription {
-    object("goblet", vec![
-        line([0.0, 0.0], [35.0, 0.0]),
-        arc([35.0, 3.0], [35.0, 0.0], [35.0, 6.0], true),
-        arc([35.0, 33.0], [35.0, 6.0], [8.0, 33.0], false),
-        line([8.0, 33.0], [8.0, 60.0]),
-        arc([2.0, 68.0], [8.0, 60.0], [8.0, 76.0], true),
-        line([8.0, 76.0], [8.0, 90.0]),
-        arc([30.0, 90.0], [8.0, 90.0], [30.0, 112.0], false),
-        bezier([[30.0, 112.0], [36.0, 112.0], [40.0, 130.0], [40.0, 150.0]]),
-        line([40.0, 150.0], [37.0, 150.0]),
-        arc([0.0, 150.0], [37.0, 150.0], [0.0, 113.0], false),
-    ])
+    object(
+        "goblet",
+        vec![
+            line([0.0, 0.0], [35.0, 0.0]),
+            arc([35.0, 3.0], [35.0, 0.0], [35.0, 6.0], true),
+            arc([35.0, 33.0], [35.0, 6.0], [8.0, 33.0], false),
+            line([8.0, 33.0], [8.0, 60.0]),
+            arc([2.0, 68.0], [8.0, 60.0], [8.0, 76.0], true),
+            line([8.0, 76.0], [8.0, 90.0]),
+            arc([30.0, 90.0], [8.0, 90.0], [30.0, 112.0], false),
+            bezier([[30.0, 112.0], [36.0, 112.0], [40.0, 130.0], [40.0, 150.0]]),
+            line([40.0, 150.0], [37.0, 150.0]),
+            arc([0.0, 150.0], [37.0, 150.0], [0.0, 113.0], false),
+        ],
+    )
 }
 
 /// Bowl (90 mm wide, 42 mm tall): the outside with the outer half of the rounded rim (convex),
@@ -70,46 +90,55 @@ fn goblet() -> ObjectDescription {
 fn bowl() -> ObjectDescription {
     let fillet_end = on_circle([30.0, 5.0], 5.0, -45.0);
     let [er, ez] = fillet_end;
-    object("bowl", vec![
-        line([0.0, 0.0], [30.0, 0.0]),
-        arc([30.0, 5.0], [30.0, 0.0], fillet_end, true),
-        bezier([fillet_end, [er + 5.0, ez + 5.0], [45.0, 25.0], [45.0, 40.0]]),
-        arc([43.0, 40.0], [45.0, 40.0], [43.0, 42.0], true),
-        arc([43.0, 40.0], [43.0, 42.0], [41.0, 40.0], true),
-        bezier([[41.0, 40.0], [41.0, 25.0], [36.0, 10.0], [28.0, 6.0]]),
-        line([28.0, 6.0], [0.0, 6.0]),
-    ])
+    object(
+        "bowl",
+        vec![
+            line([0.0, 0.0], [30.0, 0.0]),
+            arc([30.0, 5.0], [30.0, 0.0], fillet_end, true),
+            bezier([fillet_end, [er + 5.0, ez + 5.0], [45.0, 25.0], [45.0, 40.0]]),
+            arc([43.0, 40.0], [45.0, 40.0], [43.0, 42.0], true),
+            arc([43.0, 40.0], [43.0, 42.0], [41.0, 40.0], true),
+            bezier([[41.0, 40.0], [41.0, 25.0], [36.0, 10.0], [28.0, 6.0]]),
+            line([28.0, 6.0], [0.0, 6.0]),
+        ],
+    )
 }
 
 /// Pencil (7.2 mm wide, 177.5 mm long, along z): eraser, ferrule, and body with the sharpened
 /// wood cone and graphite tip, separated by concave steps: 3 convex components.
 fn pencil() -> ObjectDescription {
-    object("pencil", vec![
-        line([0.0, 0.0], [2.8, 0.0]),
-        arc([2.8, 0.4], [2.8, 0.0], [3.2, 0.4], true),
-        line([3.2, 0.4], [3.2, 6.0]),
-        line([3.2, 6.0], [3.6, 6.0]),
-        line([3.6, 6.0], [3.6, 14.0]),
-        line([3.6, 14.0], [3.5, 14.0]),
-        line([3.5, 14.0], [3.5, 160.0]),
-        line([3.5, 160.0], [1.0, 174.0]),
-        line([1.0, 174.0], [0.0, 177.5]),
-    ])
+    object(
+        "pencil",
+        vec![
+            line([0.0, 0.0], [2.8, 0.0]),
+            arc([2.8, 0.4], [2.8, 0.0], [3.2, 0.4], true),
+            line([3.2, 0.4], [3.2, 6.0]),
+            line([3.2, 6.0], [3.6, 6.0]),
+            line([3.6, 6.0], [3.6, 14.0]),
+            line([3.6, 14.0], [3.5, 14.0]),
+            line([3.5, 14.0], [3.5, 160.0]),
+            line([3.5, 160.0], [1.0, 174.0]),
+            line([1.0, 174.0], [0.0, 177.5]),
+        ],
+    )
 }
 
 /// Solid jar (70 mm wide, 91 mm tall): body with shoulder, concave neck, collar with lip and lid:
 /// 3 components.
 fn jar() -> ObjectDescription {
-    object("jar", vec![
-        line([0.0, 0.0], [30.0, 0.0]),
-        arc([30.0, 5.0], [30.0, 0.0], [35.0, 5.0], true),
-        line([35.0, 5.0], [35.0, 60.0]),
-        arc([25.0, 60.0], [35.0, 60.0], [25.0, 70.0], true),
-        arc([25.0, 80.0], [25.0, 70.0], [15.0, 80.0], false),
-        line([15.0, 80.0], [15.0, 88.0]),
-        arc([12.0, 88.0], [15.0, 88.0], [12.0, 91.0], true),
-        line([12.0, 91.0], [0.0, 91.0]),
-    ])
+    object(
+        "jar",
+        vec![
+            line([0.0, 0.0], [30.0, 0.0]),
+            arc([30.0, 5.0], [30.0, 0.0], [35.0, 5.0], true),
+            line([35.0, 5.0], [35.0, 60.0]),
+            arc([25.0, 60.0], [35.0, 60.0], [25.0, 70.0], true),
+            arc([25.0, 80.0], [25.0, 70.0], [15.0, 80.0], false),
+            line([15.0, 80.0], [15.0, 88.0]),
+            arc([12.0, 88.0], [15.0, 88.0], [12.0, 91.0], true),
+            line([12.0, 91.0], [0.0, 91.0]),
+        ],
+    )
 }
 
 /// Vase (about 70 mm wide, 98 mm tall): bellied body, concave neck, rounded lip closing the
@@ -121,13 +150,16 @@ fn vase() -> ObjectDescription {
     let (sin, cos) = start_angle.to_radians().sin_cos();
     let lip_center = [neck_end[0] - 3.0 * cos, neck_end[1] - 3.0 * sin];
     let lip_top = on_circle(lip_center, 3.0, 90.0);
-    object("vase", vec![
-        line([0.0, 0.0], [26.0, 0.0]),
-        bezier([[26.0, 0.0], [38.0, 15.0], [40.0, 45.0], [18.0, 70.0]]),
-        bezier([[18.0, 70.0], [13.6, 75.0], [10.0, 85.0], neck_end]),
-        arc(lip_center, neck_end, lip_top, true),
-        line(lip_top, [0.0, lip_top[1]]),
-    ])
+    object(
+        "vase",
+        vec![
+            line([0.0, 0.0], [26.0, 0.0]),
+            bezier([[26.0, 0.0], [38.0, 15.0], [40.0, 45.0], [18.0, 70.0]]),
+            bezier([[18.0, 70.0], [13.6, 75.0], [10.0, 85.0], neck_end]),
+            arc(lip_center, neck_end, lip_top, true),
+            line(lip_top, [0.0, lip_top[1]]),
+        ],
+    )
 }
 
 /// All six, in the paper's order.

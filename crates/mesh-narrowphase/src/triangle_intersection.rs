@@ -10,17 +10,21 @@
 //!   (shared vertex, shared edge, vertex on a face, edge on edge) are therefore reported as
 //!   contacts, and a gap of one unit in the last place is reported as [`TriangleContact::Disjoint`].
 //!   [`triangles_intersect`] makes exactly the same decisions as [`intersect_triangles`].
-//! * **Points are rounded, not exact.** The points returned are vertices of the input when the
-//!   true point is a vertex, and otherwise are computed in double-double arithmetic followed by one
-//!   f64 interpolation, so each lies within a few units in the last place (relative to the size
-//!   of the coordinates) of the true point, also for nearly parallel planes. Every point is
-//!   finally clamped into the intersection of the two triangles' bounding boxes, which contains
-//!   the true intersection.
-//! * **Scale.** Inputs whose largest coordinate magnitude lies outside `[2^-150, 2^150]` are first
-//!   scaled by a power of two (exact) and the results scaled back, so any finite input is handled
-//!   without overflow. The predicates are exact as long as no intermediate product underflows,
-//!   which holds unless two coordinates of the input differ by less than about `2^-300` times the
-//!   largest coordinate without being equal.
+//! * **Points are rounded, not exact.** A returned point is an input vertex, bit for bit, when the
+//!   true point is one. Otherwise it is interpolated along an edge (in f64) at the zero of two
+//!   plane-side or line-side determinants evaluated in double-double arithmetic (relative error
+//!   about `1e-32` times their condition number), so it lies within a few units in the last
+//!   place (relative to the coordinates) of the true point, also for planes `1e-12` or even
+//!   `1e-15` rad from parallel, where plain f64 determinants would misplace it by a relative
+//!   `1e-4` or worse. Every point is finally clamped into the intersection of the two bounding
+//!   boxes, which contains the true common set. The order of a coplanar overlap polygon is
+//!   decided in f64 (by angle around its centroid).
+//! * **Scale.** The inputs are first scaled by a power of two (exactly) so that their largest
+//!   coordinate magnitude `M` lies in `[1, 2)`, and the results scaled back, so any finite input is
+//!   handled without overflow. Shewchuk's predicates are exact as long as no intermediate product
+//!   underflows; after this scaling that is guaranteed when every non-zero coordinate, and every
+//!   non-zero difference of two coordinates along the same axis, is at least `2^-250 M`
+//!   (about `5e-76 M`). Smaller ones may make a decision inexact, never a panic or a NaN.
 //! * **Degenerate triangles** (three collinear points or repeated points) are treated as the
 //!   segment or point they are, and their contacts are reported as [`TriangleContact::Segment`]
 //!   (the common set of a segment or point with anything is a segment or point).
@@ -103,11 +107,14 @@ impl OverlapPolygon {
 
     /// Orders the points counter-clockwise around their centroid in the projection that drops
     /// `axis`, then reverses them if that projection flips the reference normal (`flip`).
+    /// One or two points need no order.
     fn sort_ccw(&mut self, axis: usize, flip: bool) {
         let len = self.len;
+        if len < 3 {
+            return;
+        }
         let pts = &mut self.buf[..len];
-        let n = len as f64;
-        let centre = pts.iter().fold(DVec3::ZERO, |acc, &p| acc + p) / n;
+        let centre = pts.iter().fold(DVec3::ZERO, |acc, &p| acc + p) / len as f64;
         let c = proj(centre, axis);
         let angle = |p: DVec3| {
             let q = proj(p, axis);
@@ -140,7 +147,7 @@ pub fn intersect_triangles(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> TriangleContact 
     let (a, b) = (&frame.t1, &frame.t2);
     let contact = match Stage::of(a, b) {
         Stage::Separated => TriangleContact::Disjoint,
-        Stage::Crossing(iv) => iv.segment(a, b),
+        Stage::Crossing { s1, s2 } => Intervals::new(a, b, &s1, &s2).segment(a, b),
         Stage::Special => special_contact(a, b, false),
     };
     frame.finish(contact)
@@ -156,7 +163,7 @@ pub fn triangles_intersect(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
     let (a, b) = (&frame.t1, &frame.t2);
     match Stage::of(a, b) {
         Stage::Separated => false,
-        Stage::Crossing(iv) => iv.overlaps(),
+        Stage::Crossing { s1, s2 } => Intervals::new(a, b, &s1, &s2).overlaps(),
         Stage::Special => !matches!(special_contact(a, b, true), TriangleContact::Disjoint),
     }
 }
@@ -164,17 +171,11 @@ pub fn triangles_intersect(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
 // ---------------------------------------------------------------------------------------------
 // Input scaling and output clamping.
 
-/// Largest coordinate magnitude exponent used unscaled.
-const SAFE_EXPONENT: i32 = 150;
-
-/// The two triangles, scaled by a power of two if needed, with what is needed to map results
-/// back to input coordinates.
+/// The two triangles scaled by a power of two (exactly) so that their largest coordinate
+/// magnitude lies in `[1, 2)`, with what is needed to map results back.
 struct Frame {
     t1: [DVec3; 3],
     t2: [DVec3; 3],
-    /// Intersection of the two (scaled) bounding boxes: contains every common point.
-    lo: DVec3,
-    hi: DVec3,
     /// Two factors whose product undoes the scaling (each a representable power of two).
     up: [f64; 2],
 }
@@ -189,50 +190,37 @@ impl Frame {
             .iter()
             .chain(t2)
             .fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-        let e = if m > 0.0 {
-            // Finite for any finite positive m; an off-by-one from rounding is harmless.
-            m.log2().floor() as i32
-        } else {
-            0
-        };
-        let e = if (-SAFE_EXPONENT..=SAFE_EXPONENT).contains(&e) {
-            0
-        } else {
-            e
-        };
-        // Scale by 2^-e in two steps so that each factor is a normal power of two.
+        // m = f 2^e with f in [1, 2) (a subnormal m reads as e = -1023 and is scaled by 2^1023,
+        // which is exact too). Scale by 2^-e in two steps so that each factor is a normal power
+        // of two.
+        let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
         let k1 = -e / 2;
         let k2 = -e - k1;
         let (d1, d2) = (pow2(k1), pow2(k2));
         let scale = |t: &[DVec3; 3]| t.map(|p| p * d1 * d2);
-        let (t1, t2) = (scale(t1), scale(t2));
-        let lo = min3(&t1).max(min3(&t2));
-        let hi = max3(&t1).min(max3(&t2));
         Some(Self {
-            t1,
-            t2,
-            lo,
-            hi,
+            t1: scale(t1),
+            t2: scale(t2),
             up: [pow2(-k1), pow2(-k2)],
         })
     }
 
-    /// Clamps a computed point into the common bounding box and scales it back.
-    fn map(&self, p: DVec3) -> DVec3 {
-        p.max(self.lo).min(self.hi) * self.up[0] * self.up[1]
-    }
-
+    /// Clamps every point into the intersection of the two bounding boxes (which contains the
+    /// true common set) and undoes the scaling.
     fn finish(&self, contact: TriangleContact) -> TriangleContact {
+        let lo = min3(&self.t1).max(min3(&self.t2));
+        let hi = max3(&self.t1).min(max3(&self.t2));
+        let map = |p: DVec3| p.max(lo).min(hi) * self.up[0] * self.up[1];
         match contact {
             TriangleContact::Disjoint => TriangleContact::Disjoint,
             TriangleContact::Segment { a, b } => TriangleContact::Segment {
-                a: self.map(a),
-                b: self.map(b),
+                a: map(a),
+                b: map(b),
             },
             TriangleContact::Coplanar { mut points } => {
                 let len = points.len;
                 for p in &mut points.buf[..len] {
-                    *p = self.map(*p);
+                    *p = map(*p);
                 }
                 TriangleContact::Coplanar { points }
             }
@@ -240,7 +228,7 @@ impl Frame {
     }
 }
 
-/// `2^k` for `k` in `[-1022, 1023]` (the callers stay within `[-538, 538]`).
+/// `2^k` for `k` in `[-1022, 1023]` (the callers stay within `[-512, 512]`).
 fn pow2(k: i32) -> f64 {
     f64::from_bits(((k.clamp(-1022, 1023) + 1023) as u64) << 52)
 }
@@ -345,8 +333,9 @@ fn lerp_zero(a: DVec3, b: DVec3, fa: f64, fb: f64) -> DVec3 {
 enum Stage {
     /// One triangle lies strictly on one side of the other's plane.
     Separated,
-    /// Both triangles are non-degenerate and cross (or touch) each other's plane transversally.
-    Crossing(Intervals),
+    /// Both triangles are non-degenerate and cross (or touch) each other's plane transversally;
+    /// `s1` are the sides of t1's vertices relative to the plane of t2, `s2` the converse.
+    Crossing { s1: [f64; 3], s2: [f64; 3] },
     /// Coplanar, or at least one triangle degenerate.
     Special,
 }
@@ -367,10 +356,7 @@ impl Stage {
         if s1.iter().all(|&v| v == 0.0) || s2.iter().all(|&v| v == 0.0) {
             return Self::Special;
         }
-        let (lo1, hi1) = interval(t1, &s1);
-        // Along n1 × n2 the interval of t2 runs the other way (its rule is stated along n2 × n1).
-        let (hi2, lo2) = interval(t2, &s2);
-        Self::Crossing(Intervals { lo1, hi1, lo2, hi2 })
+        Self::Crossing { s1, s2 }
     }
 }
 
@@ -484,6 +470,13 @@ struct Intervals {
 }
 
 impl Intervals {
+    fn new(t1: &[DVec3; 3], t2: &[DVec3; 3], s1: &[f64; 3], s2: &[f64; 3]) -> Self {
+        let (lo1, hi1) = interval(t1, s1);
+        // Along n1 × n2 the interval of t2 runs the other way (its rule is stated along n2 × n1).
+        let (hi2, lo2) = interval(t2, s2);
+        Self { lo1, hi1, lo2, hi2 }
+    }
+
     fn overlaps(&self) -> bool {
         order(&self.lo1, &self.hi2) >= 0.0 && order(&self.hi1, &self.lo2) <= 0.0
     }
@@ -675,7 +668,7 @@ fn coplanar_overlap(t1: &[DVec3; 3], t2: &[DVec3; 3], first_only: bool) -> Overl
         .filter(|&&v| inside(t2, sign2, v))
         .chain(
             t2.iter()
-                .filter(|&&v| inside(t1, sign1, v)),
+                .filter(|&&v| !t1.contains(&v) && inside(t1, sign1, v)),
         )
         .copied();
     for v in candidates {
@@ -733,8 +726,7 @@ fn segment_in_plane(p: DVec3, q: DVec3, t: &[DVec3; 3]) -> TriangleContact {
         .iter()
         .copied()
         .filter(|&v| orient(p, q, v, axis) == 0.0 && within(p, q, v));
-    let crossings =
-        (0..3).filter_map(|i| proper_crossing(p, q, t[i], t[(i + 1) % 3], axis));
+    let crossings = (0..3).filter_map(|i| proper_crossing(p, q, t[i], t[(i + 1) % 3], axis));
     let dir = q - p;
     let mut span: Option<((f64, DVec3), (f64, DVec3))> = None;
     for x in ends.chain(vertices).chain(crossings) {
@@ -803,7 +795,7 @@ fn segment_segment(p: DVec3, q: DVec3, r: DVec3, s: DVec3) -> TriangleContact {
 const SPLITTER: f64 = 134_217_729.0;
 
 /// Unevaluated sum `hi + lo` with `|lo| <= ulp(hi) / 2`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy)]
 struct Dd {
     hi: f64,
     lo: f64,

@@ -158,8 +158,14 @@ fn reference_segment(t1: &Tri, t2: &Tri) -> Option<(DVec3, DVec3, f64)> {
                 pts.push(t[i] + (t[j] - t[i]) * (s[i] / (s[i] - s[j])));
             }
         }
-        let lo = pts.iter().copied().min_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))?;
-        let hi = pts.iter().copied().max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))?;
+        let lo = pts
+            .iter()
+            .copied()
+            .min_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))?;
+        let hi = pts
+            .iter()
+            .copied()
+            .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))?;
         Some((lo, hi))
     };
     let (lo1, hi1) = clip(t1, n2.normalize(), t2[0])?;
@@ -403,7 +409,10 @@ fn check_polygon(t1: &Tri, t2: &Tri, want: &[DVec3], area: f64) {
         let pts = expect_polygon(x, y);
         assert_eq!(pts.len(), want.len(), "{pts:?} vs {want:?}");
         for w in want {
-            assert!(pts.iter().any(|p| close(*p, *w, 1e-12)), "{w:?} missing in {pts:?}");
+            assert!(
+                pts.iter().any(|p| close(*p, *w, 1e-12)),
+                "{w:?} missing in {pts:?}"
+            );
         }
         let n = normal(x).normalize();
         assert!((vector_area(&pts).dot(n) - area).abs() <= 1e-12 * (1.0 + area));
@@ -423,7 +432,14 @@ fn coplanar_overlap_hexagon_area() {
     let flat = |x: f64, y: f64| v(x, y, 0.0);
     let t1 = [flat(0.0, 0.0), flat(3.0, 0.0), flat(0.0, 3.0)];
     let t2 = [flat(2.0, 2.0), flat(-1.0, 2.0), flat(2.0, -1.0)];
-    let hex = [(1.0, 0.0), (2.0, 0.0), (2.0, 1.0), (1.0, 2.0), (0.0, 2.0), (0.0, 1.0)];
+    let hex = [
+        (1.0, 0.0),
+        (2.0, 0.0),
+        (2.0, 1.0),
+        (1.0, 2.0),
+        (0.0, 2.0),
+        (0.0, 1.0),
+    ];
     let want: Vec<DVec3> = hex.iter().map(|&(x, y)| flat(x, y)).collect();
     check_polygon(&t1, &t2, &want, 3.0);
     // Reversed orientation of t1: still counter-clockwise about its own normal.
@@ -463,7 +479,12 @@ fn coplanar_containment_and_touching() {
     // A thin triangle from t1's edge x = 0 out through its hypotenuse: the overlap is the
     // quadrilateral (0,1) (2,0) (4,0) (3,1), of area 2.5 (shoelace: (-2 + 0 + 4 + 3) / 2).
     let t2 = [v(0.0, 1.0, 0.0), v(5.0, -1.5, 0.0), v(5.0, 1.0, 0.0)];
-    let quad = [v(0.0, 1.0, 0.0), v(2.0, 0.0, 0.0), v(4.0, 0.0, 0.0), v(3.0, 1.0, 0.0)];
+    let quad = [
+        v(0.0, 1.0, 0.0),
+        v(2.0, 0.0, 0.0),
+        v(4.0, 0.0, 0.0),
+        v(3.0, 1.0, 0.0),
+    ];
     check_polygon(&t1, &t2, &quad, 2.5);
     assert!((clipped_area(&t1, &t2) - 2.5).abs() < 1e-12);
 }
@@ -506,10 +527,19 @@ fn nearly_parallel_tilted_planes_closed_form() {
     // the ends by about 1e-4; double-double keeps them to rounding.
     let t1 = [v(3.0, 0.0, 0.0), v(0.0, 3.0, 0.0), v(0.0, 0.0, 3.0)];
     let want = (v(2.0, 1.0, 0.0), v(0.0, 1.0, 2.0));
+    // A second t1 in plane 1 with 20-bit fractions (exactly on it, but its products with t2's
+    // coordinates round, unlike the integers above). Within plane 1, plane 2 is y = 1, so its
+    // ends are where the edges from the vertex above y = 1 reach y = 1.
+    let q = |x: f64| (x * pow2(20)).round() / pow2(20);
+    let on1 = |x: f64, y: f64| v(q(x), q(y), 3.0 - q(x) - q(y));
+    let t1b = [on1(1.9, 0.2), on1(0.1, 0.1), on1(0.8, 1.9)];
+    let at_y1 = |a: DVec3, b: DVec3| a + (b - a) * ((1.0 - a.y) / (b.y - a.y));
+    let want_b = (at_y1(t1b[2], t1b[0]), at_y1(t1b[2], t1b[1]));
     for s in [pow2(-20), pow2(-39), pow2(-50)] {
         let on2 = |x: f64, z: f64| v(x, 3.0 - (x + z) + s * (2.0 - x - z), z);
         let t2 = [on2(1.0, -3.0), on2(-3.0, 1.0), on2(4.0, 4.0)];
         check_segment_all_orders(&t1, &t2, want, 1e-14);
+        check_segment_all_orders(&t1b, &t2, want_b, 1e-14);
     }
 }
 
@@ -598,18 +628,33 @@ fn degenerate_triangles_as_segments_and_points() {
     }
     // Collinear, missing the triangle, or stopping just short of the plane.
     expect_disjoint(&[v(5.0, 5.0, -1.0), v(5.0, 5.0, 1.0), v(5.0, 5.0, 0.0)], &t);
-    expect_disjoint(&[v(1.0, 1.0, -1.0), v(1.0, 1.0, -1e-300), v(1.0, 1.0, -0.5)], &t);
+    expect_disjoint(
+        &[v(1.0, 1.0, -1.0), v(1.0, 1.0, -1e-300), v(1.0, 1.0, -0.5)],
+        &t,
+    );
     // A segment lying in the plane, clipped by the triangle; one touching a vertex; one along
     // an edge.
     let s = [v(-1.0, 1.0, 0.0), v(5.0, 1.0, 0.0), v(2.0, 1.0, 0.0)];
     let got = expect_segment(&s, &t);
-    assert!(same_segment(got, (v(0.0, 1.0, 0.0), v(3.0, 1.0, 0.0)), 1e-15));
+    assert!(same_segment(
+        got,
+        (v(0.0, 1.0, 0.0), v(3.0, 1.0, 0.0)),
+        1e-15
+    ));
     let s = [v(-1.0, 3.0, 0.0), v(1.0, 5.0, 0.0), v(0.0, 4.0, 0.0)];
     assert!(same_segment(expect_segment(&t, &s), (t[2], t[2]), 0.0));
     let s = [v(-1.0, 5.0, 0.0), v(1.0, 3.0, 0.0), v(0.0, 4.0, 0.0)];
-    assert!(same_segment(expect_segment(&t, &s), (t[2], v(1.0, 3.0, 0.0)), 0.0));
+    assert!(same_segment(
+        expect_segment(&t, &s),
+        (t[2], v(1.0, 3.0, 0.0)),
+        0.0
+    ));
     let s = [v(-1.0, 0.0, 0.0), v(2.0, 0.0, 0.0), v(2.0, 0.0, 0.0)];
-    assert!(same_segment(expect_segment(&s, &t), (t[0], v(2.0, 0.0, 0.0)), 0.0));
+    assert!(same_segment(
+        expect_segment(&s, &t),
+        (t[0], v(2.0, 0.0, 0.0)),
+        0.0
+    ));
     let s = [v(-1.0, 1.0, 0.0), v(-3.0, 1.0, 0.0), v(-2.0, 1.0, 0.0)];
     expect_disjoint(&s, &t);
     // Points.
@@ -624,15 +669,25 @@ fn degenerate_triangles_as_segments_and_points() {
     // collinear overlapping, collinear touching, collinear apart.
     let m = v(1.0, 1.0, 1.0);
     let s1 = [v(0.0, 0.0, 0.0), v(2.0, 2.0, 2.0), m];
-    assert_eq!(expect_segment(&s1, &[v(0.0, 2.0, 0.0), v(2.0, 0.0, 2.0), m]), (m, m));
+    assert_eq!(
+        expect_segment(&s1, &[v(0.0, 2.0, 0.0), v(2.0, 0.0, 2.0), m]),
+        (m, m)
+    );
     let s2 = [v(0.0, 2.0, 0.0), v(2.0, 0.0, 2.0), v(2.0, 0.0, 2.0)];
     let (a, b) = expect_segment(&s1, &s2);
     assert!(close(a, m, 1e-15) && close(b, m, 1e-15));
     expect_disjoint(&s1, &[v(0.0, 2.0, 0.0), v(2.0, 0.0, 2.1), v(2.0, 0.0, 2.1)]);
     let x = |a: f64| v(a, 0.0, 0.0);
     let line1 = [x(0.0), x(2.0), x(1.0)];
-    assert!(same_segment(expect_segment(&line1, &[x(1.5), x(3.0), x(3.0)]), (x(1.5), x(2.0)), 0.0));
-    assert_eq!(expect_segment(&line1, &[x(2.0), x(3.0), x(2.5)]), (x(2.0), x(2.0)));
+    assert!(same_segment(
+        expect_segment(&line1, &[x(1.5), x(3.0), x(3.0)]),
+        (x(1.5), x(2.0)),
+        0.0
+    ));
+    assert_eq!(
+        expect_segment(&line1, &[x(2.0), x(3.0), x(2.5)]),
+        (x(2.0), x(2.0))
+    );
     expect_disjoint(&line1, &[x(2.5), x(3.0), x(3.0)]);
     // Segment against point, point against point (also all at the origin).
     assert_eq!(expect_segment(&line1, &pt(x(0.5))), (x(0.5), x(0.5)));
@@ -655,10 +710,16 @@ fn random_pairs_segment_lies_on_both_triangles_and_matches_reference() {
         let shift = rng.point() * 0.5;
         let t2 = rng.tri().map(|p| p * 0.7 + shift);
         let got = intersect_triangles(&t1, &t2);
-        assert_eq!(got != TriangleContact::Disjoint, triangles_intersect(&t1, &t2));
+        assert_eq!(
+            got != TriangleContact::Disjoint,
+            triangles_intersect(&t1, &t2)
+        );
         if let TriangleContact::Segment { a, b } = got {
             for p in [a, b, (a + b) * 0.5] {
-                assert!(dist(p, &t1) < 1e-9 && dist(p, &t2) < 1e-9, "{t1:?} {t2:?} {p:?}");
+                assert!(
+                    dist(p, &t1) < 1e-9 && dist(p, &t2) < 1e-9,
+                    "{t1:?} {t2:?} {p:?}"
+                );
             }
         }
         // Compare with the plain f64 reference where it is well conditioned.
@@ -671,7 +732,10 @@ fn random_pairs_segment_lies_on_both_triangles_and_matches_reference() {
         match (reference_segment(&t1, &t2), got) {
             (Some((lo, hi, len)), TriangleContact::Segment { a, b }) if len > 1e-9 => {
                 crossing += 1;
-                assert!(close(a, lo, 1e-9) && close(b, hi, 1e-9), "{a} {b} vs {lo} {hi}");
+                assert!(
+                    close(a, lo, 1e-9) && close(b, hi, 1e-9),
+                    "{a} {b} vs {lo} {hi}"
+                );
             }
             (Some((_, _, len)), got) if len.abs() > 1e-9 => {
                 assert_eq!(len > 0.0, got != TriangleContact::Disjoint, "{t1:?} {t2:?}");
@@ -686,7 +750,10 @@ fn random_pairs_segment_lies_on_both_triangles_and_matches_reference() {
             _ => {}
         }
     }
-    assert!(checked > 30_000 && crossing > 5_000 && apart > 5_000, "{checked} {crossing} {apart}");
+    assert!(
+        checked > 30_000 && crossing > 5_000 && apart > 5_000,
+        "{checked} {crossing} {apart}"
+    );
 }
 
 /// Kinds of random pairs, many built to touch exactly.
@@ -782,9 +849,16 @@ fn boolean_agrees_with_full_on_100k_seeded_pairs() {
         let (t1, t2) = random_pair(&mut rng, kind);
         let full = intersect_triangles(&t1, &t2);
         let quick = triangles_intersect(&t1, &t2);
-        assert_eq!(full != TriangleContact::Disjoint, quick, "{t1:?} {t2:?}: {full:?}");
+        assert_eq!(
+            full != TriangleContact::Disjoint,
+            quick,
+            "{t1:?} {t2:?}: {full:?}"
+        );
         // The decision does not depend on argument or vertex order.
-        let (p1, p2) = (permutations(&t1)[rng.index(6)], permutations(&t2)[rng.index(6)]);
+        let (p1, p2) = (
+            permutations(&t1)[rng.index(6)],
+            permutations(&t2)[rng.index(6)],
+        );
         assert_eq!(triangles_intersect(&p2, &p1), quick, "{t1:?} {t2:?}");
         let pts = match full {
             TriangleContact::Disjoint => vec![],
@@ -800,7 +874,10 @@ fn boolean_agrees_with_full_on_100k_seeded_pairs() {
             assert!(p.is_finite());
             for t in [&t1, &t2] {
                 let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
-                assert!(p.cmpge(lo).all() && p.cmple(hi).all(), "{p} outside {lo}..{hi}");
+                assert!(
+                    p.cmpge(lo).all() && p.cmple(hi).all(),
+                    "{p} outside {lo}..{hi}"
+                );
             }
         }
         hits[kind][usize::from(quick)] += 1;
@@ -809,7 +886,10 @@ fn boolean_agrees_with_full_on_100k_seeded_pairs() {
     for (kind, h) in hits.iter().enumerate() {
         // Kinds 1 and 2 share a vertex or an edge, so they always meet.
         let disjoint_expected = if kind == 1 || kind == 2 { 0 } else { 1_000 };
-        assert!(h[0] >= disjoint_expected && h[1] > 1_000, "kind {kind}: {h:?}");
+        assert!(
+            h[0] >= disjoint_expected && h[1] > 1_000,
+            "kind {kind}: {h:?}"
+        );
         if disjoint_expected == 0 {
             assert_eq!(h[0], 0, "kind {kind}");
         }
@@ -826,27 +906,40 @@ fn integer_pairs_match_exact_separating_axis_truth() {
         let (t1, t2) = (to_tri(&i1), to_tri(&i2));
         let truth = sat_intersect(&i1, &i2);
         let got = intersect_triangles(&t1, &t2);
-        assert_eq!(got != TriangleContact::Disjoint, truth, "{i1:?} {i2:?}: {got:?}");
+        assert_eq!(
+            got != TriangleContact::Disjoint,
+            truth,
+            "{i1:?} {i2:?}: {got:?}"
+        );
         assert_eq!(triangles_intersect(&t1, &t2), truth, "{i1:?} {i2:?}");
         match got {
             TriangleContact::Disjoint => counts[0] += 1,
             TriangleContact::Segment { a, b } => {
                 counts[1] += 1;
                 for p in [a, b, (a + b) * 0.5] {
-                    assert!(dist(p, &t1) < 1e-12 && dist(p, &t2) < 1e-12, "{i1:?} {i2:?}");
+                    assert!(
+                        dist(p, &t1) < 1e-12 && dist(p, &t2) < 1e-12,
+                        "{i1:?} {i2:?}"
+                    );
                 }
             }
             TriangleContact::Coplanar { points } => {
                 counts[2] += 1;
                 for p in points.iter() {
-                    assert!(dist(*p, &t1) < 1e-12 && dist(*p, &t2) < 1e-12, "{i1:?} {i2:?}");
+                    assert!(
+                        dist(*p, &t1) < 1e-12 && dist(*p, &t2) < 1e-12,
+                        "{i1:?} {i2:?}"
+                    );
                 }
                 // Area (which depends on the order of the points) against clipping, and
                 // counter-clockwise about n1.
                 let n1 = normal(&t1).normalize();
                 let area = vector_area(&points).dot(n1);
                 let want = clipped_area(&t1, &t2);
-                assert!((area - want).abs() < 1e-9, "{i1:?} {i2:?}: {area} vs {want}");
+                assert!(
+                    (area - want).abs() < 1e-9,
+                    "{i1:?} {i2:?}: {area} vs {want}"
+                );
             }
         }
     }
@@ -889,14 +982,21 @@ fn extreme_magnitudes_are_scale_invariant() {
         // Touching decisions too: shared vertex and coplanar overlap.
         let shared = [x[1], v(5.0, -1.0, 1.0) * s, v(5.0, 1.0, 2.0) * s];
         assert_eq!(expect_segment(&x, &shared), (x[1], x[1]), "2^{k}");
-        let flat = [v(1.0, 1.0, 0.0) * s, v(2.0, 1.0, 0.0) * s, v(1.0, 2.0, 0.0) * s];
+        let flat = [
+            v(1.0, 1.0, 0.0) * s,
+            v(2.0, 1.0, 0.0) * s,
+            v(1.0, 2.0, 0.0) * s,
+        ];
         assert_eq!(expect_polygon(&x, &flat).len(), 3);
     }
     // Other large factors: finite and close to the scaled answer.
     for s in [1e300, 1e-300, f64::MAX / 8.0, 1e-310] {
         let (a, b) = expect_segment(&base().map(|p| p * s), &t2.map(|p| p * s));
         assert!(a.is_finite() && b.is_finite());
-        assert!(close(a, a0 * s, 1e-10 * s) && close(b, b0 * s, 1e-10 * s), "{s}");
+        assert!(
+            close(a, a0 * s, 1e-10 * s) && close(b, b0 * s, 1e-10 * s),
+            "{s}"
+        );
     }
     // Coordinates near the largest finite value, with a crossing computed between them: t1
     // meets y = 0 at x in [-m/2, m/2], t2 meets z = 0 at x in [0, m].
