@@ -1,1 +1,37 @@
-//! Placeholder: filled in by its stage issue.
+//! Stage 3 of the paper (section II): exact distance computation between the exact parametric
+//! features that Stage 2 found closest.
+//!
+//! A [`Refiner`] takes a [`geom_param::Seed`] (approximately closest points on two features, one
+//! on each solid) and returns the exact closest pair of those features as a [`RefinedContact`]:
+//! both points, the signed distance, the normal, the final features with their parameters, and
+//! [`RefineDiagnostics`] saying how far to trust all of it.
+//!
+//! [`NewtonRefiner`] is the default: it projects each seed point onto its feature along the
+//! normal (as the paper does), then runs a safeguarded Newton iteration on ½|P_a − P_b|² over
+//! the parameters of both features, for every pair kind (vertex, edge and face on either side):
+//! trust region, inertia-controlled steps (descent when separated, the depth saddle when
+//! penetrating), periodic wrapping, feature switching at face sides and poles, and
+//! non-convergence and degenerate (continuous) contact reported as values. `docs/STABILITY.md`
+//! at the workspace root tabulates the stiff and extreme cases.
+//!
+//! What it deliberately does not know: meshes, hulls, bounding volumes and components (that is
+//! Stages 1 and 2), which seed to refine or whether two objects are in contact (the pipeline
+//! decides that from the signed distance), and surfaces of revolution: it only uses the
+//! `Surface`/`Curve` traits and the `Solid` adjacency of `geom-param`.
+//!
+//! Units: millimetres and radians. Frames: results in A's object frame.
+
+mod diagnostics;
+mod feature_eval;
+mod feature_switch;
+mod newton;
+mod newton_refiner;
+mod options;
+mod penetration;
+mod projection;
+mod refiner;
+mod sym_eigen;
+
+pub use newton_refiner::NewtonRefiner;
+pub use options::NewtonOptions;
+pub use refiner::{RefineDiagnostics, RefineStatus, RefinedContact, Refiner};

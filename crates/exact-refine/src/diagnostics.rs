@@ -1,0 +1,130 @@
+//! Diagnostics of a finished solve: conditioning, second-order check, continuous-contact
+//! detection and error estimates.
+
+// Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
+#![allow(clippy::needless_range_loop)]
+
+use crate::feature_eval::Body;
+use crate::newton::{EPS, Outcome, Solution, State};
+use crate::refiner::{RefineDiagnostics, RefineStatus};
+use crate::sym_eigen::sym_eigen;
+use geom_param::DVec3;
+
+/// Diagnostics of `solution` (a pair solve between `a` and `b`) whose unit normal from A to B
+/// is `normal`.
+pub(crate) fn diagnose(
+    a: &Body,
+    b: &Body,
+    solution: &Solution,
+    normal: DVec3,
+) -> RefineDiagnostics {
+    let state = &solution.state;
+    let n = state.n;
+    let eigen = sym_eigen(&state.hs, n);
+    let values = &eigen.values[..n];
+    let floor = state.eigen_floor(&eigen);
+    let largest = values.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
+    let smallest = values.iter().fold(f64::INFINITY, |m, l| m.min(l.abs()));
+    let condition = match n {
+        0 => 1.0,
+        _ if smallest > 0.0 => largest / smallest,
+        _ => f64::INFINITY,
+    };
+    let converged = solution.outcome == Outcome::Converged;
+    let index = state.target_index(state.sign(a, b));
+    let second_order = match index {
+        0 => values.first().is_none_or(|&l| l >= -floor),
+        k => values[k - 1] <= floor && values.get(k).is_none_or(|&l| l >= -floor),
+    };
+    let (kappa, degenerate) = relative_curvature(state, normal);
+    let status = match solution.outcome {
+        Outcome::Converged if degenerate => RefineStatus::ContinuousContact,
+        Outcome::Converged => RefineStatus::Converged,
+        Outcome::IterationLimit => RefineStatus::IterationLimit,
+        // `Penetrating` is a hand-over inside `newton::solve` and never ends a pair solve.
+        Outcome::Stalled | Outcome::Penetrating => RefineStatus::Stalled,
+        Outcome::SwitchLimit => RefineStatus::FeatureSwitchLimit,
+    };
+    let rounding = 16.0 * EPS * state.scale;
+    let residual = state.gradient_norm() + state.gradient_floor();
+    // Along the flattest direction f = ½(σ0 + ½κδ²)², so a tangential residual g allows an
+    // offset δ ≤ g / λ_min (linear model) and, when not penetrating, δ ≤ (2g / κ²)^⅓ (the
+    // quartic model that holds at exact touch, where λ_min → 0); the gap then errs by ½κδ².
+    let point_error_estimate = if n == 0 {
+        rounding
+    } else if degenerate {
+        f64::INFINITY
+    } else {
+        let linear = if smallest > 0.0 {
+            residual / smallest
+        } else {
+            f64::INFINITY
+        };
+        let quartic = if index == 0 {
+            (2.0 * residual / (kappa * kappa)).cbrt()
+        } else {
+            f64::INFINITY
+        };
+        rounding + linear.min(quartic)
+    };
+    let error_estimate = if degenerate || n == 0 {
+        rounding + state.gradient_norm()
+    } else {
+        rounding + 0.5 * kappa * point_error_estimate * point_error_estimate
+    };
+    RefineDiagnostics {
+        iterations: solution.iterations,
+        gradient_norm: state.gradient_norm(),
+        condition,
+        converged,
+        is_local_minimum: converged && second_order,
+        error_estimate,
+        point_error_estimate,
+        status,
+    }
+}
+
+/// The smallest curvature of the gap function (1/mm) over the directions of the pair's
+/// parameters, and whether it is zero to rounding (a continuous contact).
+///
+/// With the features a distance ℓ apart along `normal`, the Hessian of f has a Schur complement
+/// of about ℓ(K_a + K_b) − ℓ²K_a² in the rolling directions, so its smallest eigenvalue over ℓ
+/// is the curvature of the gap. ℓ is the actual gap |σ| (which makes concentric spheres of
+/// different radii exactly degenerate), floored at √ε / (curvature scale) at touch, where the rounding of the eigenvalue
+/// (256 ε (1 + ℓ·curvature)) then resolves relative curvatures down to about 4e-6 of the
+/// curvature scale. Zero for
+/// parallel cylinders, flat faces and concentric spheres.
+fn relative_curvature(state: &State, normal: DVec3) -> (f64, bool) {
+    let (n, na) = (state.n, state.na);
+    if n == 0 {
+        return (f64::INFINITY, false);
+    }
+    let curvature = state.curvature.max(1.0 / state.scale);
+    let ell = state.d.length().max(EPS.sqrt() / curvature);
+    let d = -normal * ell;
+    let mut first = [DVec3::ZERO; 4];
+    first[..na].copy_from_slice(&state.ea.d[..na]);
+    first[na..n].copy_from_slice(&state.eb.d[..n - na]);
+    let mut h = [[0.0; 4]; 4];
+    for i in 0..n {
+        for j in 0..n {
+            let (si, sj) = (
+                if i < na { 1.0 } else { -1.0 },
+                if j < na { 1.0 } else { -1.0 },
+            );
+            let second = match (i < na, j < na) {
+                (true, true) => d.dot(state.ea.dd[i][j]),
+                (false, false) => -d.dot(state.eb.dd[i - na][j - na]),
+                _ => 0.0,
+            };
+            h[i][j] =
+                (si * sj * first[i].dot(first[j]) + second) / (state.speed[i] * state.speed[j]);
+        }
+    }
+    let eigen = sym_eigen(&h, n);
+    let smallest = eigen.values[..n]
+        .iter()
+        .fold(f64::INFINITY, |m, l| m.min(l.abs()));
+    let rounding = 256.0 * EPS * (1.0 + ell * curvature);
+    (smallest / ell, smallest <= rounding)
+}

@@ -1,0 +1,220 @@
+//! Uniform evaluation of a feature (face, edge, vertex, or a fixed point) in A's frame: the
+//! point, its first and second derivatives for 0, 1 or 2 parameters, and an outward direction.
+
+use geom_param::{Boundary, DPose3, DVec3, FeatureLocation, ParamRange, ParamSide, Solid};
+
+/// What one side of the problem is: a feature of a posed solid, or a fixed point (the target
+/// of a projection). Positions are in A's frame: a solid's points are `pose * local`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Body<'a> {
+    /// A solid posed in A's frame.
+    Solid {
+        /// The solid.
+        solid: &'a Solid,
+        /// Its pose in A's frame.
+        pose: DPose3,
+    },
+    /// A fixed point in A's frame (no parameters).
+    Point(DVec3),
+}
+
+/// Where the variable point of a body is: a feature location, or `None` for a fixed point.
+pub(crate) type Loc = Option<FeatureLocation>;
+
+/// Point and derivatives of a feature in A's frame for its `n` (0, 1 or 2) parameters.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct FeatureEval {
+    /// The point (mm).
+    pub point: DVec3,
+    /// Number of parameters.
+    pub n: usize,
+    /// First derivatives ∂P/∂x_i.
+    pub d: [DVec3; 2],
+    /// Second derivatives ∂²P/∂x_i∂x_j.
+    pub dd: [[DVec3; 2]; 2],
+}
+
+/// The parameters of a location as an array and their count.
+pub(crate) fn params(loc: &Loc) -> ([f64; 2], usize) {
+    match loc {
+        Some(FeatureLocation::Face { u, v, .. }) => ([*u, *v], 2),
+        Some(FeatureLocation::Edge { t, .. }) => ([*t, 0.0], 1),
+        _ => ([0.0; 2], 0),
+    }
+}
+
+/// The same feature with new parameters.
+pub(crate) fn with_params(loc: &Loc, x: [f64; 2]) -> Loc {
+    match *loc {
+        Some(FeatureLocation::Face { id, .. }) => Some(FeatureLocation::Face {
+            id,
+            u: x[0],
+            v: x[1],
+        }),
+        Some(FeatureLocation::Edge { id, .. }) => Some(FeatureLocation::Edge { id, t: x[0] }),
+        other => other,
+    }
+}
+
+/// Parameter side of a face rectangle at index `param` (0 = u, 1 = v), at its min or max end.
+pub(crate) fn side_of(param: usize, at_max: bool) -> ParamSide {
+    match (param, at_max) {
+        (0, false) => ParamSide::UMin,
+        (0, true) => ParamSide::UMax,
+        (_, false) => ParamSide::VMin,
+        (_, true) => ParamSide::VMax,
+    }
+}
+
+/// The face parameters of the point at running parameter `t` on `side`.
+pub(crate) fn side_params(domain: &[ParamRange; 2], side: ParamSide, t: f64) -> [f64; 2] {
+    match side {
+        ParamSide::UMin => [domain[0].min, t],
+        ParamSide::UMax => [domain[0].max, t],
+        ParamSide::VMin => [t, domain[1].min],
+        ParamSide::VMax => [t, domain[1].max],
+    }
+}
+
+impl Body<'_> {
+    /// Parameter domains of the feature at `loc` (unused entries are a dummy range).
+    pub fn domains(&self, loc: &Loc) -> [ParamRange; 2] {
+        let dummy = ParamRange {
+            min: 0.0,
+            max: 0.0,
+            periodic: false,
+        };
+        match (self, loc) {
+            (Self::Solid { solid, .. }, Some(FeatureLocation::Face { id, .. })) => {
+                solid.face(*id).surface.domain()
+            }
+            (Self::Solid { solid, .. }, Some(FeatureLocation::Edge { id, .. })) => {
+                [solid.edge(*id).curve.domain(), dummy]
+            }
+            _ => [dummy; 2],
+        }
+    }
+
+    /// Point and derivatives at `loc`, in A's frame.
+    pub fn eval(&self, loc: &Loc) -> FeatureEval {
+        match (self, loc) {
+            (Self::Point(p), _) => FeatureEval {
+                point: *p,
+                ..FeatureEval::default()
+            },
+            (Self::Solid { solid, pose }, Some(location)) => {
+                let r = |v: DVec3| pose.rotation * v;
+                match *location {
+                    FeatureLocation::Face { id, u, v } => {
+                        let s = solid.eval_face(id, u, v);
+                        FeatureEval {
+                            point: *pose * s.point,
+                            n: 2,
+                            d: [r(s.du), r(s.dv)],
+                            dd: [[r(s.duu), r(s.duv)], [r(s.duv), r(s.dvv)]],
+                        }
+                    }
+                    FeatureLocation::Edge { id, t } => {
+                        let c = solid.eval_edge(id, t);
+                        FeatureEval {
+                            point: *pose * c.point,
+                            n: 1,
+                            d: [r(c.d1), DVec3::ZERO],
+                            dd: [[r(c.d2), DVec3::ZERO], [DVec3::ZERO; 2]],
+                        }
+                    }
+                    FeatureLocation::Vertex { id } => FeatureEval {
+                        point: *pose * solid.vertex(id).point,
+                        ..FeatureEval::default()
+                    },
+                }
+            }
+            (Self::Solid { pose, .. }, None) => FeatureEval {
+                point: pose.translation,
+                ..FeatureEval::default()
+            },
+        }
+    }
+
+    /// Unit outward direction of the solid at `loc`, in A's frame: the face normal; for an edge
+    /// the normalised sum of its faces' normals there; for a vertex the normal of a pole, or at
+    /// an apex minus the mean of the faces' inward tangents. `None` for a fixed point or where
+    /// none of these exists.
+    pub fn outward(&self, loc: &Loc) -> Option<DVec3> {
+        let (Self::Solid { solid, pose }, Some(location)) = (self, loc) else {
+            return None;
+        };
+        let local = match *location {
+            FeatureLocation::Face { id, u, v } => {
+                let surface = &solid.face(id).surface;
+                let [du, dv] = surface.domain();
+                surface.normal(du.normalize(u), dv.normalize(v))
+            }
+            FeatureLocation::Edge { id, t } => {
+                let edge = solid.edge(id);
+                let t = edge.curve.domain().normalize(t);
+                let sum: DVec3 = edge
+                    .uses
+                    .iter()
+                    .filter_map(|use_| {
+                        let surface = &solid.face(use_.face).surface;
+                        let [a, b] = side_params(&surface.domain(), use_.side, t);
+                        surface.normal(a, b)
+                    })
+                    .sum();
+                sum.try_normalize()
+            }
+            FeatureLocation::Vertex { id } => {
+                let mut pole = None;
+                let mut inward = DVec3::ZERO;
+                for (face_id, side) in vertex_sides(solid, id) {
+                    let surface = &solid.face(face_id).surface;
+                    let domain = surface.domain();
+                    let running = if matches!(side, ParamSide::UMin | ParamSide::UMax) {
+                        1
+                    } else {
+                        0
+                    };
+                    for k in 0..4 {
+                        let t = domain[running].min + domain[running].span() * f64::from(k) / 4.0;
+                        let [a, b] = side_params(&domain, side, t);
+                        if pole.is_none() {
+                            pole = surface.normal(a, b);
+                        }
+                        inward += inward_tangent(surface.eval(a, b), side).normalize_or_zero();
+                    }
+                }
+                pole.or_else(|| (-inward).try_normalize())
+            }
+        };
+        local.map(|n| pose.rotation * n)
+    }
+}
+
+/// The derivative pointing from `side` into the face's interior, in the face's frame.
+pub(crate) fn inward_tangent(s: geom_param::SurfacePoint, side: ParamSide) -> DVec3 {
+    match side {
+        ParamSide::UMin => s.du,
+        ParamSide::UMax => -s.du,
+        ParamSide::VMin => s.dv,
+        ParamSide::VMax => -s.dv,
+    }
+}
+
+/// The (face, side) pairs that collapse into vertex `id`.
+pub(crate) fn vertex_sides(
+    solid: &Solid,
+    id: geom_param::VertexId,
+) -> impl Iterator<Item = (geom_param::FaceId, ParamSide)> + '_ {
+    solid.vertex(id).faces.iter().flat_map(move |&face_id| {
+        [
+            ParamSide::UMin,
+            ParamSide::UMax,
+            ParamSide::VMin,
+            ParamSide::VMax,
+        ]
+        .into_iter()
+        .filter(move |&side| solid.face(face_id).boundary(side) == Boundary::Vertex(id))
+        .map(move |side| (face_id, side))
+    })
+}

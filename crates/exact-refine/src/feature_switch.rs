@@ -1,0 +1,94 @@
+//! Feature switching: keeping parameters in their domains by wrapping periodic ones and moving
+//! onto the bounding edge or vertex when a face parameter reaches its side, and back into an
+//! adjacent face when the objective decreases into it.
+
+use crate::feature_eval::{Body, Loc, inward_tangent, side_of, side_params, vertex_sides};
+use geom_param::{Boundary, DVec3, FeatureLocation};
+
+/// Samples of the running parameter tried when leaving a vertex into a face: the best one is
+/// only a start, Newton then turns the running parameter to the optimum.
+const VERTEX_EXIT_SAMPLES: u32 = 16;
+
+/// Wraps periodic parameters, clamps the others, and where a non-periodic face parameter is on
+/// its side switches to what lies beyond it: the edge (with t = the parameter running along the
+/// side) or the vertex the side collapses into.
+pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
+    let Body::Solid { solid, .. } = body else {
+        return loc;
+    };
+    match loc {
+        Some(FeatureLocation::Face { id, u, v }) => {
+            let face = solid.face(id);
+            let domain = face.surface.domain();
+            let w = [domain[0].normalize(u), domain[1].normalize(v)];
+            for i in 0..2 {
+                let range = domain[i];
+                if range.periodic || (w[i] > range.min && w[i] < range.max) {
+                    continue;
+                }
+                match face.boundary(side_of(i, w[i] >= range.max)) {
+                    Boundary::Edge(e) => {
+                        let t = solid.edge(e).curve.domain().normalize(w[1 - i]);
+                        return Some(FeatureLocation::Edge { id: e, t });
+                    }
+                    Boundary::Vertex(vertex) => {
+                        return Some(FeatureLocation::Vertex { id: vertex });
+                    }
+                    Boundary::Periodic => {}
+                }
+            }
+            Some(FeatureLocation::Face {
+                id,
+                u: w[0],
+                v: w[1],
+            })
+        }
+        Some(FeatureLocation::Edge { id, t }) => Some(FeatureLocation::Edge {
+            id,
+            t: solid.edge(id).curve.domain().normalize(t),
+        }),
+        other => other,
+    }
+}
+
+/// From an edge or vertex, the adjacent face location (on the shared side) whose inward
+/// direction makes the largest angle-cosine with `pull` (the direction, in A's frame, in which
+/// moving the point decreases the objective), if that component exceeds `threshold` (mm).
+pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Loc {
+    let (Body::Solid { solid, pose }, Some(location)) = (body, loc) else {
+        return None;
+    };
+    let mut best: Option<(f64, FeatureLocation)> = None;
+    let mut consider = |face_id, side, t: f64| {
+        let surface = &solid.face(face_id).surface;
+        let domain = surface.domain();
+        let [u, v] = side_params(&domain, side, t);
+        let tangent = pose.rotation * inward_tangent(surface.eval(u, v), side);
+        let score = pull.dot(tangent.normalize_or_zero());
+        if score > threshold && best.is_none_or(|(s, _)| score > s) {
+            best = Some((score, FeatureLocation::Face { id: face_id, u, v }));
+        }
+    };
+    match *location {
+        FeatureLocation::Edge { id, t } => {
+            for use_ in solid.edge(id).uses {
+                consider(use_.face, use_.side, t);
+            }
+        }
+        FeatureLocation::Vertex { id } => {
+            for (face_id, side) in vertex_sides(solid, id) {
+                let range = solid.face(face_id).surface.domain()[usize::from(matches!(
+                    side,
+                    geom_param::ParamSide::UMin | geom_param::ParamSide::UMax
+                ))];
+                for k in 0..VERTEX_EXIT_SAMPLES {
+                    let t =
+                        range.min + range.span() * f64::from(k) / f64::from(VERTEX_EXIT_SAMPLES);
+                    consider(face_id, side, t);
+                }
+            }
+        }
+        FeatureLocation::Face { .. } => {}
+    }
+    best.map(|(_, l)| l)
+}

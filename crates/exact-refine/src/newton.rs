@@ -1,0 +1,431 @@
+//! The safeguarded Newton solver for the closest pair of two features (0, 1 or 2 parameters
+//! each): f = ½|P_a − P_b|² minimised with a trust region, handing penetrating pairs to
+//! [`crate::penetration`].
+//!
+//! Every step is a Newton step on the Hessian of f with each eigenvalue replaced by its floored
+//! magnitude, which makes it a descent direction of f also where the Hessian is indefinite or
+//! nearly singular (a "saddle-free" Newton step), inside a trust region on the step length (in
+//! mm: variables are scaled by their speeds |∂P/∂x_i|). Where the Hessian is positive definite
+//! this is plain Newton, so convergence is quadratic at an isolated minimum (and linear where
+//! the minimum is degenerate, e.g. at exact touch, where f is quartic along the rolling
+//! directions).
+
+// Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
+#![allow(clippy::needless_range_loop)]
+use crate::feature_eval::{Body, FeatureEval, Loc, params, with_params};
+use crate::feature_switch::{reenter, settle};
+use crate::options::NewtonOptions;
+use crate::penetration::solve_penetration;
+use crate::sym_eigen::{SymEigen, sym_eigen};
+use geom_param::DVec3;
+use std::f64::consts::PI;
+
+/// Rounding unit.
+pub(crate) const EPS: f64 = f64::EPSILON;
+
+/// The assembled problem at one pair of locations.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct State {
+    /// Location on A.
+    pub la: Loc,
+    /// Location on B.
+    pub lb: Loc,
+    /// Evaluation on A.
+    pub ea: FeatureEval,
+    /// Evaluation on B.
+    pub eb: FeatureEval,
+    /// Number of A's parameters; B's follow them.
+    pub na: usize,
+    /// Number of variables.
+    pub n: usize,
+    /// P_a − P_b (mm).
+    pub d: DVec3,
+    /// Speeds |∂P/∂x_i| (floored), the variable scaling.
+    pub speed: [f64; 4],
+    /// Scaled gradient g_i / speed_i (mm): the connecting vector's tangential components.
+    pub gs: [f64; 4],
+    /// Scaled Hessian H_ij / (speed_i speed_j) (dimensionless).
+    pub hs: [[f64; 4]; 4],
+    /// Coordinate scale (mm) for rounding floors: max(|P_a|, |P_b|, |B's translation|).
+    pub scale: f64,
+    /// Largest |∂²P/∂x_i∂x_j| / (speed_i speed_j) (1/mm): curvature scale of the Hessian.
+    pub curvature: f64,
+}
+
+impl State {
+    pub(crate) fn new(a: &Body, b: &Body, la: Loc, lb: Loc, base_scale: f64) -> Self {
+        let (ea, eb) = (a.eval(&la), b.eval(&lb));
+        let d = ea.point - eb.point;
+        let (na, n) = (ea.n, ea.n + eb.n);
+        let scale = base_scale
+            .max(ea.point.length())
+            .max(eb.point.length())
+            .max(f64::MIN_POSITIVE);
+        let mut first = [DVec3::ZERO; 4];
+        first[..na].copy_from_slice(&ea.d[..na]);
+        first[na..n].copy_from_slice(&eb.d[..eb.n]);
+        let max_speed = first[..n].iter().fold(0.0_f64, |m, v| m.max(v.length()));
+        let floor = (1e-12 * max_speed).max(f64::MIN_POSITIVE.sqrt());
+        let mut speed = [1.0; 4];
+        for i in 0..n {
+            speed[i] = first[i].length().max(floor);
+        }
+        let mut gs = [0.0; 4];
+        let mut hs = [[0.0; 4]; 4];
+        let mut curvature = 0.0_f64;
+        for i in 0..n {
+            let (si, ai) = if i < na { (1.0, true) } else { (-1.0, false) };
+            gs[i] = si * d.dot(first[i]) / speed[i];
+            for j in 0..n {
+                let sj = if j < na { 1.0 } else { -1.0 };
+                let same_side = (j < na) == ai;
+                let second = if same_side {
+                    let dd = if ai {
+                        ea.dd[i][j]
+                    } else {
+                        eb.dd[i - na][j - na]
+                    };
+                    curvature = curvature.max(dd.length() / (speed[i] * speed[j]));
+                    si * d.dot(dd)
+                } else {
+                    0.0
+                };
+                hs[i][j] = (si * sj * first[i].dot(first[j]) + second) / (speed[i] * speed[j]);
+            }
+        }
+        Self {
+            la,
+            lb,
+            ea,
+            eb,
+            na,
+            n,
+            d,
+            speed,
+            gs,
+            hs,
+            scale,
+            curvature,
+        }
+    }
+
+    /// Rounding floor of the tangential residual (mm).
+    pub(crate) fn gradient_floor(&self) -> f64 {
+        16.0 * EPS * self.scale
+    }
+
+    /// Largest scaled gradient component (mm).
+    pub(crate) fn gradient_norm(&self) -> f64 {
+        self.gs[..self.n].iter().fold(0.0, |m, g| m.max(g.abs()))
+    }
+
+    pub(crate) fn stationary(&self, options: &NewtonOptions) -> bool {
+        self.gradient_norm() <= options.angle_tolerance * self.d.length() + self.gradient_floor()
+    }
+
+    /// Rounding floor of the scaled Hessian's eigenvalues: below it an eigenvalue is zero.
+    pub(crate) fn eigen_floor(&self, eigen: &SymEigen) -> f64 {
+        let largest = eigen.values[..self.n]
+            .iter()
+            .fold(0.0_f64, |m, l| m.max(l.abs()));
+        64.0 * EPS * (largest + self.scale * self.curvature)
+    }
+
+    /// +1 when separated (or touching), −1 when penetrating: P_b lies behind A's outward
+    /// direction at P_a and P_a behind B's at P_b (both tests where both directions exist; far
+    /// from the answer one of them alone is not a reliable witness of penetration).
+    pub(crate) fn sign(&self, a: &Body, b: &Body) -> f64 {
+        let behind_a = a.outward(&self.la).map(|n| (-self.d).dot(n) < 0.0);
+        let behind_b = b.outward(&self.lb).map(|n| self.d.dot(n) < 0.0);
+        let penetrating = match (behind_a, behind_b) {
+            (Some(x), Some(y)) => x && y,
+            (Some(x), None) | (None, Some(x)) => x,
+            (None, None) => false,
+        };
+        if penetrating { -1.0 } else { 1.0 }
+    }
+
+    /// The number of negative eigenvalues the witness has: 0 when separated, min(n_a, n_b)
+    /// when penetrating.
+    pub(crate) fn target_index(&self, sign: f64) -> usize {
+        if sign < 0.0 {
+            self.na.min(self.n - self.na)
+        } else {
+            0
+        }
+    }
+
+    fn merit(&self) -> f64 {
+        0.5 * self.d.length_squared()
+    }
+}
+
+/// How a solve ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Outcome {
+    /// Stationary to tolerance, or the Newton step fell below rounding.
+    Converged,
+    /// `max_iterations` steps without convergence.
+    IterationLimit,
+    /// The trust region shrank below rounding without convergence.
+    Stalled,
+    /// `max_feature_switches` exceeded.
+    SwitchLimit,
+    /// (Internal hand-over) the minimisation reached a penetrating pair.
+    Penetrating,
+}
+
+/// The end state of a solve.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Solution {
+    pub state: State,
+    pub iterations: u32,
+    pub outcome: Outcome,
+}
+
+/// Solves for the critical point of ½|P_a − P_b|² near (`la`, `lb`) as described in the module
+/// docs. `base_scale` (mm) enters the rounding floors (B's translation, for instance).
+pub(crate) fn solve(
+    a: &Body,
+    b: &Body,
+    la: Loc,
+    lb: Loc,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Solution {
+    let first = minimize(a, b, settle(a, la), settle(b, lb), base_scale, options);
+    if first.outcome == Outcome::Penetrating {
+        let mut deep = solve_penetration(a, b, first.state.la, first.state.lb, base_scale, options);
+        deep.iterations += first.iterations;
+        return deep;
+    }
+    // Minimising f can end on the intersection curve of two faces (f = 0 with the normals not
+    // opposed) without ever seeing a penetrating pair: restart once inside the lens.
+    match crossing_restart(a, b, &first.state) {
+        Some((ra, rb)) if first.outcome == Outcome::Converged => {
+            let mut deep = solve_penetration(a, b, ra, rb, base_scale, options);
+            deep.iterations += first.iterations;
+            deep
+        }
+        _ => first,
+    }
+}
+
+/// Where to restart when `state` sits on a crossing of two faces: each point moved along its
+/// face, away from the other face's outward normal, by the lens size angle / curvature.
+fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
+    let (na, nb) = (a.outward(&state.la)?, b.outward(&state.lb)?);
+    if state.ea.n != 2 || state.eb.n != 2 || state.d.length() > 1e3 * EPS * state.scale {
+        return None;
+    }
+    let opposed = -na.dot(nb);
+    if opposed >= 1.0 - 1e-9 {
+        return None; // a touch, not a crossing
+    }
+    let angle = opposed.clamp(-1.0, 1.0).acos();
+    let length = angle / state.curvature.max(f64::MIN_POSITIVE);
+    let shift = |e: &FeatureEval, loc: &Loc, own: DVec3, other: DVec3| {
+        let w = (other - own * other.dot(own)).normalize_or_zero() * -length;
+        // Least-squares parameter step for the tangent displacement w.
+        let (e11, e12, e22) = (e.d[0].dot(e.d[0]), e.d[0].dot(e.d[1]), e.d[1].dot(e.d[1]));
+        let (r1, r2) = (e.d[0].dot(w), e.d[1].dot(w));
+        let det = e11 * e22 - e12 * e12;
+        let (x, _) = params(loc);
+        if det.is_nan() || det <= 0.0 {
+            return *loc;
+        }
+        with_params(
+            loc,
+            [
+                x[0] + (e22 * r1 - e12 * r2) / det,
+                x[1] + (e11 * r2 - e12 * r1) / det,
+            ],
+        )
+    };
+    let ra = settle(a, shift(&state.ea, &state.la, na, nb));
+    let rb = settle(b, shift(&state.eb, &state.lb, nb, na));
+    Some((ra, rb))
+}
+
+/// The closest point to `target` on `body` near `start`: [`minimize`] against a fixed point
+/// (which never penetrates, having no outward direction).
+pub(crate) fn minimize_projection(
+    body: &Body,
+    target: DVec3,
+    start: Loc,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Solution {
+    minimize(
+        body,
+        &Body::Point(target),
+        settle(body, start),
+        None,
+        base_scale,
+        options,
+    )
+}
+
+/// The separated regime: minimises f from (`la`, `lb`), handing over (outcome
+/// [`Outcome::Penetrating`]) as soon as the pair penetrates with parameters on both sides.
+fn minimize(
+    a: &Body,
+    b: &Body,
+    la: Loc,
+    lb: Loc,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Solution {
+    let mut cur = State::new(a, b, la, lb, base_scale);
+    let max_radius = 2.0
+        * cur.speed[..cur.n]
+            .iter()
+            .fold(cur.d.length(), |m, s| m.max(*s));
+    let mut radius = 0.25 * max_radius;
+    let mut switches = 0;
+    let end = |state, iterations, outcome| Solution {
+        state,
+        iterations,
+        outcome,
+    };
+    for iteration in 0..options.max_iterations {
+        let index = cur.target_index(cur.sign(a, b));
+        if index > 0 {
+            return end(cur, iteration, Outcome::Penetrating);
+        }
+        if cur.stationary(options) {
+            // From an edge or vertex, continue into an adjacent face if f decreases into it.
+            let threshold = 64.0 * EPS * cur.scale;
+            let entry_a = reenter(a, &cur.la, -cur.d, threshold);
+            let entry_b = if entry_a.is_none() {
+                reenter(b, &cur.lb, cur.d, threshold)
+            } else {
+                None
+            };
+            if entry_a.is_none() && entry_b.is_none() {
+                // A stationary point with negative curvature (a maximum or saddle of f, e.g. two
+                // seeds on the far sides) is left along that direction.
+                let eigen = sym_eigen(&cur.hs, cur.n);
+                let floor = cur.eigen_floor(&eigen);
+                if cur.n == 0 || eigen.values[0] >= -floor {
+                    return end(cur, iteration, Outcome::Converged);
+                }
+                let step: [f64; 4] = std::array::from_fn(|i| eigen.vectors[i][0] * radius);
+                let (ta, tb) = take_step(a, b, &cur, &step);
+                cur = State::new(a, b, ta, tb, base_scale);
+                continue;
+            }
+            switches += 1;
+            if switches > options.max_feature_switches {
+                return end(cur, iteration, Outcome::SwitchLimit);
+            }
+            cur = State::new(a, b, entry_a.or(cur.la), entry_b.or(cur.lb), base_scale);
+            continue;
+        }
+        let n = cur.n;
+        let eigen = sym_eigen(&cur.hs, n);
+        if eigen.values[..n].iter().any(|l| !l.is_finite()) {
+            return end(cur, iteration, Outcome::Stalled);
+        }
+        let floor = cur.eigen_floor(&eigen).max(f64::MIN_POSITIVE);
+        let mut step = descent_step(&cur, &eigen, floor);
+        let length = step[..n].iter().map(|s| s * s).sum::<f64>().sqrt();
+        if step[..n].iter().all(|s| s.abs() <= 4.0 * EPS * cur.scale) {
+            // The Newton step is below what the coordinates can represent: nothing left to gain.
+            return end(cur, iteration, Outcome::Converged);
+        }
+        let clipped = length.min(radius);
+        for s in step.iter_mut().take(n) {
+            *s *= clipped / length;
+        }
+        let (ta, tb) = take_step(a, b, &cur, &step);
+        let trial = State::new(a, b, ta, tb, base_scale);
+        let (m_cur, m_trial) = (cur.merit(), trial.merit());
+        let slack = 8.0 * EPS * cur.scale * ((2.0 * m_cur).sqrt() + EPS * cur.scale);
+        if m_trial.is_finite() && m_trial <= m_cur + slack {
+            if trial.la.map(|l| l.feature()) != cur.la.map(|l| l.feature())
+                || trial.lb.map(|l| l.feature()) != cur.lb.map(|l| l.feature())
+            {
+                switches += 1;
+                if switches > options.max_feature_switches {
+                    return end(trial, iteration + 1, Outcome::SwitchLimit);
+                }
+            }
+            if clipped >= 0.9 * radius {
+                radius = (2.0 * radius).min(max_radius);
+            }
+            cur = trial;
+        } else {
+            radius = 0.25 * clipped;
+            if radius < 4.0 * EPS * cur.scale {
+                return end(cur, iteration + 1, Outcome::Stalled);
+            }
+        }
+    }
+    let outcome = if cur.stationary(options) {
+        Outcome::Converged
+    } else {
+        Outcome::IterationLimit
+    };
+    end(cur, options.max_iterations, outcome)
+}
+
+/// Newton step with every eigenvalue replaced by its floored magnitude: a descent direction of
+/// f, exact Newton where the Hessian is positive definite.
+fn descent_step(cur: &State, eigen: &SymEigen, floor: f64) -> [f64; 4] {
+    let mut step = [0.0; 4];
+    for k in 0..cur.n {
+        let lambda = eigen.values[k].abs().max(floor);
+        let q_dot_g: f64 = (0..cur.n).map(|i| eigen.vectors[i][k] * cur.gs[i]).sum();
+        for (i, s) in step.iter_mut().enumerate().take(cur.n) {
+            *s -= eigen.vectors[i][k] * q_dot_g / lambda;
+        }
+    }
+    step
+}
+
+/// Applies the scaled step: periodic parameters move at most a quarter turn (the whole step is
+/// shortened to keep its direction), and the step is cut where a bounded parameter first reaches
+/// its side, which is then set exactly so that [`settle`] switches feature.
+pub(crate) fn take_step(a: &Body, b: &Body, cur: &State, step: &[f64; 4]) -> (Loc, Loc) {
+    let (xa, _) = params(&cur.la);
+    let (xb, _) = params(&cur.lb);
+    let (da, db) = (a.domains(&cur.la), b.domains(&cur.lb));
+    let mut x = [xa[0], xa[1], xb[0], xb[1]];
+    let mut delta = [0.0; 4];
+    let ranges = [da[0], da[1], db[0], db[1]];
+    let mut slot = [0usize; 4];
+    for i in 0..cur.n {
+        slot[i] = if i < cur.na { i } else { 2 + i - cur.na };
+        delta[slot[i]] = step[i] / cur.speed[i];
+    }
+    let mut alpha = 1.0_f64;
+    let mut hit = None;
+    for &s in &slot[..cur.n] {
+        let range = ranges[s];
+        if range.periodic {
+            alpha = alpha.min(0.5 * PI / delta[s].abs().max(f64::MIN_POSITIVE));
+        }
+    }
+    for &s in &slot[..cur.n] {
+        let range = ranges[s];
+        if range.periodic || delta[s] == 0.0 {
+            continue;
+        }
+        let bound = if delta[s] > 0.0 { range.max } else { range.min };
+        let room = (bound - x[s]) / delta[s];
+        if room < alpha {
+            alpha = room.max(0.0);
+            hit = Some((s, bound));
+        }
+    }
+    for &s in &slot[..cur.n] {
+        x[s] += alpha * delta[s];
+    }
+    if let Some((s, bound)) = hit {
+        x[s] = bound;
+    }
+    let la = settle(a, with_params(&cur.la, [x[0], x[1]]));
+    let lb = settle(b, with_params(&cur.lb, [x[2], x[3]]));
+    (la, lb)
+}

@@ -1,0 +1,157 @@
+//! [`NewtonRefiner`]: the default [`Refiner`] (seed projection, then safeguarded Newton).
+
+use crate::diagnostics::diagnose;
+use crate::feature_eval::Body;
+use crate::newton::{State, solve};
+use crate::options::NewtonOptions;
+use crate::projection::project;
+use crate::refiner::{RefineDiagnostics, RefineStatus, RefinedContact, Refiner};
+use geom_param::{DPose3, DVec3, FeatureLocation, Seed, SeedPoint, Solid};
+
+/// The default [`Refiner`]: projects both seed points onto their features, then runs the
+/// safeguarded Newton iteration of `newton.rs` on the pair.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NewtonRefiner {
+    /// Tolerances and caps.
+    pub options: NewtonOptions,
+}
+
+impl Refiner for NewtonRefiner {
+    /// Nothing: every solve works in fixed-size arrays on the stack.
+    type Scratch = ();
+
+    fn refine(
+        &self,
+        a: &Solid,
+        b: &Solid,
+        pose_ab: &DPose3,
+        seed: &Seed,
+        _scratch: &mut (),
+    ) -> RefinedContact {
+        let pose_ok = pose_ab.translation.is_finite()
+            && pose_ab.rotation.is_finite()
+            && (pose_ab.rotation.length() - 1.0).abs() <= 1e-6;
+        let (Some(start_a), Some(start_b)) = (sanitize(a, &seed.a), sanitize(b, &seed.b)) else {
+            return invalid(seed);
+        };
+        if !pose_ok {
+            return invalid(seed);
+        }
+        let body_a = Body::Solid {
+            solid: a,
+            pose: DPose3::IDENTITY,
+        };
+        let body_b = Body::Solid {
+            solid: b,
+            pose: *pose_ab,
+        };
+        let base = pose_ab.translation.length();
+        let options = &self.options;
+        let mut la = Some(start_a);
+        let mut lb = Some(start_b);
+        if seed.a.local_point.is_finite() {
+            la = project(&body_a, la, seed.a.local_point, 0.0, options)
+                .state
+                .la;
+        }
+        if seed.b.local_point.is_finite() {
+            lb = project(&body_b, lb, *pose_ab * seed.b.local_point, base, options)
+                .state
+                .la;
+        }
+        let solution = solve(&body_a, &body_b, la, lb, base, options);
+        let (distance, normal) = signed_distance(&body_a, &body_b, &solution.state);
+        let diagnostics = diagnose(&body_a, &body_b, &solution, normal);
+        let state = &solution.state;
+        RefinedContact {
+            point_a: state.ea.point,
+            point_b: state.eb.point,
+            location_a: state.la.unwrap_or(start_a),
+            location_b: state.lb.unwrap_or(start_b),
+            distance,
+            normal,
+            diagnostics,
+        }
+    }
+}
+
+/// The signed distance and unit normal (A to B) at a final state.
+fn signed_distance(a: &Body, b: &Body, state: &State) -> (f64, DVec3) {
+    let gap = -state.d; // P_b − P_a
+    if let Some(FeatureLocation::Face { .. }) = state.la {
+        if let Some(n) = a.outward(&state.la) {
+            return (gap.dot(n), n);
+        }
+    }
+    let sign = state.sign(a, b);
+    let normal = (gap * sign)
+        .try_normalize()
+        .or_else(|| b.outward(&state.lb).map(|n| -n))
+        .or_else(|| a.outward(&state.la))
+        .unwrap_or(DVec3::Z);
+    (sign * gap.length(), normal)
+}
+
+/// The seed's location with finite parameters (non-finite ones reset to the middle of their
+/// domain), or `None` when its feature is not on `solid`.
+fn sanitize(solid: &Solid, point: &SeedPoint) -> Option<FeatureLocation> {
+    let mid = |p: f64, range: geom_param::ParamRange| {
+        if p.is_finite() {
+            p
+        } else {
+            0.5 * (range.min + range.max)
+        }
+    };
+    match point.location {
+        FeatureLocation::Face { id, u, v } => {
+            let [du, dv] = solid.faces.get(id.0 as usize)?.surface.domain();
+            Some(FeatureLocation::Face {
+                id,
+                u: mid(u, du),
+                v: mid(v, dv),
+            })
+        }
+        FeatureLocation::Edge { id, t } => {
+            let range = solid.edges.get(id.0 as usize)?.curve.domain();
+            Some(FeatureLocation::Edge {
+                id,
+                t: mid(t, range),
+            })
+        }
+        FeatureLocation::Vertex { id } => solid.vertices.get(id.0 as usize).map(|_| point.location),
+    }
+}
+
+/// The result for input that cannot be refined.
+fn invalid(seed: &Seed) -> RefinedContact {
+    let clean = |l: FeatureLocation| match l {
+        FeatureLocation::Face { id, u, v } => FeatureLocation::Face {
+            id,
+            u: if u.is_finite() { u } else { 0.0 },
+            v: if v.is_finite() { v } else { 0.0 },
+        },
+        FeatureLocation::Edge { id, t } => FeatureLocation::Edge {
+            id,
+            t: if t.is_finite() { t } else { 0.0 },
+        },
+        vertex => vertex,
+    };
+    RefinedContact {
+        point_a: DVec3::ZERO,
+        point_b: DVec3::ZERO,
+        location_a: clean(seed.a.location),
+        location_b: clean(seed.b.location),
+        distance: f64::INFINITY,
+        normal: DVec3::Z,
+        diagnostics: RefineDiagnostics {
+            iterations: 0,
+            gradient_norm: f64::INFINITY,
+            condition: f64::INFINITY,
+            converged: false,
+            is_local_minimum: false,
+            error_estimate: f64::INFINITY,
+            point_error_estimate: f64::INFINITY,
+            status: RefineStatus::InvalidInput,
+        },
+    }
+}

@@ -1,0 +1,271 @@
+//! The penetration witness: for interpenetrating features, the pair whose connecting vector is
+//! anti-parallel to the normals and which locally maximises the depth.
+//!
+//! That pair is a saddle of f = ½|P_a − P_b|², and f is zero with zero gradient all along the
+//! intersection curve, so neither minimising f nor solving ∇f = 0 keeps away from that curve.
+//! The problem is therefore nested (Haynsworth: the witness has exactly this inertia): the side
+//! with more parameters (B on a tie) is the *inner* side, whose point is the projection of the
+//! outer point onto it, and the *outer* point maximises the signed depth
+//! D = −(P_outer − P_inner) · n_inner (positive inside the inner solid, minus the distance
+//! outside). D has a non-zero gradient −n_inner · ∂P_outer/∂x on the intersection curve, so
+//! ascent leaves it; outside (a start on the wrong side) maximising D minimises the distance,
+//! so the same iteration finds the separated closest pair. With S the Schur complement of the
+//! inner block in the Hessian of f (the Hessian of ½D²), Hess D = (S − ∇D ∇Dᵀ) / D; the step
+//! is Newton on D with that Hessian made negative definite (eigenvalues floored), or a gradient
+//! step where |D| is at rounding level, inside a trust region on D.
+
+// Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
+#![allow(clippy::needless_range_loop)]
+
+use crate::feature_eval::{Body, Loc};
+use crate::feature_switch::{reenter, settle};
+use crate::newton::{EPS, Outcome, Solution, State, minimize_projection, take_step};
+use crate::options::NewtonOptions;
+use crate::sym_eigen::sym_eigen;
+use geom_param::DVec3;
+
+/// Solves for the penetration witness from (`la`, `lb`) as described in the module docs.
+pub(crate) fn solve_penetration(
+    a: &Body,
+    b: &Body,
+    la: Loc,
+    lb: Loc,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Solution {
+    let mut steps = 0u32;
+    // The outer gradient is only as good as the inner projection (its error divided by the
+    // inner Hessian, which is below 1 inside a convex solid): project a thousand times tighter.
+    let inner_options = NewtonOptions {
+        angle_tolerance: 1e-3 * options.angle_tolerance,
+        ..*options
+    };
+    // The pair with the inner point projected onto the inner feature, warm-started where it is.
+    // Roles follow the current parameter counts (a switch can change them).
+    let pair = |la: Loc, lb: Loc, outer_is_a: bool, steps: &mut u32| {
+        let (outer, inner, lo, li) = if outer_is_a {
+            (a, b, la, lb)
+        } else {
+            (b, a, lb, la)
+        };
+        let projection =
+            minimize_projection(inner, outer.eval(&lo).point, li, base_scale, &inner_options);
+        *steps += projection.iterations;
+        let li = projection.state.la;
+        if outer_is_a {
+            State::new(a, b, lo, li, base_scale)
+        } else {
+            State::new(a, b, li, lo, base_scale)
+        }
+    };
+    let roles = |s: &State| s.na <= s.n - s.na;
+    let start = State::new(a, b, settle(a, la), settle(b, lb), base_scale);
+    let mut built_as = roles(&start);
+    let mut cur = pair(start.la, start.lb, built_as, &mut steps);
+    let max_radius = 2.0
+        * cur.speed[..cur.n]
+            .iter()
+            .fold(cur.d.length(), |m, s| m.max(*s));
+    let mut radius = 0.25 * max_radius;
+    let mut switches = 0;
+    let end = |state, iterations, outcome| Solution {
+        state,
+        iterations,
+        outcome,
+    };
+    for iteration in 0..options.max_iterations {
+        let outer_is_a = roles(&cur);
+        if outer_is_a != built_as {
+            // The inner side lost a parameter (moved onto an edge or vertex): swap roles and
+            // project the new inner side.
+            built_as = outer_is_a;
+            cur = pair(cur.la, cur.lb, outer_is_a, &mut steps);
+            switches += 1;
+            if switches > options.max_feature_switches {
+                return end(cur, steps + iteration, Outcome::SwitchLimit);
+            }
+            continue;
+        }
+        let inner = if outer_is_a { b } else { a };
+        let Some((merit, gradient)) = depth(inner, &cur, outer_is_a) else {
+            return end(cur, steps + iteration, Outcome::Stalled);
+        };
+        // Stationary, and not on the intersection curve (where f is stationary too but D
+        // still rises: its gradient is the sine of the crossing angle there).
+        let slope = gradient.iter().fold(0.0_f64, |m, g| m.max(g.abs()));
+        // Below 1e3 ε x scale the depth is rounding and the noise bound 2·floor/|D| meaningless.
+        let noise = if merit.abs() > 1e3 * EPS * cur.scale {
+            2.0 * cur.gradient_floor() / merit.abs()
+        } else {
+            0.0
+        };
+        let (step, escaping) = outer_step(&cur, outer_is_a, merit, &gradient, radius);
+        if cur.stationary(options) && slope <= 1e-6 + noise && !escaping {
+            // From an edge or vertex, continue into an adjacent face if the depth rises into it
+            // (against the inner normal).
+            let (outer, outer_loc) = if outer_is_a { (a, cur.la) } else { (b, cur.lb) };
+            let inner_loc = if outer_is_a { cur.lb } else { cur.la };
+            let pull = inner.outward(&inner_loc).map_or(DVec3::ZERO, |n| -n);
+            let Some(entry) = reenter(outer, &outer_loc, pull, 64.0 * EPS) else {
+                return end(cur, steps + iteration, Outcome::Converged);
+            };
+            switches += 1;
+            if switches > options.max_feature_switches {
+                return end(cur, steps + iteration, Outcome::SwitchLimit);
+            }
+            cur = if outer_is_a {
+                pair(Some(entry), cur.lb, true, &mut steps)
+            } else {
+                pair(cur.la, Some(entry), false, &mut steps)
+            };
+            built_as = roles(&cur);
+            continue;
+        }
+        let length = step.iter().map(|s| s * s).sum::<f64>().sqrt();
+        if !escaping && step.iter().all(|s| s.abs() <= 4.0 * EPS * cur.scale) {
+            return end(cur, steps + iteration, Outcome::Converged);
+        }
+        let (ta, tb) = take_step(a, b, &cur, &step);
+        let trial = if outer_is_a {
+            pair(ta, cur.lb, true, &mut steps)
+        } else {
+            pair(cur.la, tb, false, &mut steps)
+        };
+        if roles(&trial) != outer_is_a {
+            cur = trial; // re-paired with swapped roles at the top of the loop
+            continue;
+        }
+        let trial_merit = depth(inner, &trial, outer_is_a).map_or(f64::NEG_INFINITY, |(m, _)| m);
+        let slack = 8.0 * EPS * cur.scale;
+        if trial_merit.is_finite() && trial_merit >= merit - slack {
+            if trial.la.map(|l| l.feature()) != cur.la.map(|l| l.feature())
+                || trial.lb.map(|l| l.feature()) != cur.lb.map(|l| l.feature())
+            {
+                switches += 1;
+                if switches > options.max_feature_switches {
+                    return end(trial, steps + iteration + 1, Outcome::SwitchLimit);
+                }
+            }
+            if length >= 0.9 * radius {
+                radius = (2.0 * radius).min(max_radius);
+            }
+            cur = trial;
+        } else {
+            radius = 0.25 * length;
+            if radius < 4.0 * EPS * cur.scale {
+                return end(cur, steps + iteration + 1, Outcome::Stalled);
+            }
+        }
+    }
+    let outcome = if cur.stationary(options) {
+        Outcome::Converged
+    } else {
+        Outcome::IterationLimit
+    };
+    end(cur, steps + options.max_iterations, outcome)
+}
+
+/// The signed depth D of the outer point below the inner feature (mm) and its scaled gradient
+/// over the outer variables, or `None` where the inner feature has no outward direction.
+fn depth(inner: &Body, state: &State, outer_is_a: bool) -> Option<(f64, [f64; 4])> {
+    let (inner_loc, outer_minus_inner) = if outer_is_a {
+        (state.lb, state.d)
+    } else {
+        (state.la, -state.d)
+    };
+    let n = inner.outward(&inner_loc)?;
+    let (first, o0, p) = if outer_is_a {
+        (&state.ea.d, 0, state.na)
+    } else {
+        (&state.eb.d, state.na, state.n - state.na)
+    };
+    let mut gradient = [0.0; 4];
+    for i in 0..p {
+        gradient[o0 + i] = -n.dot(first[i]) / state.speed[o0 + i];
+    }
+    Some((-outer_minus_inner.dot(n), gradient))
+}
+
+/// The scaled outer step (zero on the inner variables) maximising D, clipped to `radius`, and
+/// whether it is an escape from a stationary minimum or saddle of D.
+fn outer_step(
+    state: &State,
+    outer_is_a: bool,
+    depth: f64,
+    gradient: &[f64; 4],
+    radius: f64,
+) -> ([f64; 4], bool) {
+    let (n, na) = (state.n, state.na);
+    let (o0, p, i0, q) = if outer_is_a {
+        (0, na, na, n - na)
+    } else {
+        (na, n - na, 0, na)
+    };
+    let floor = 64.0 * EPS * (1.0 + state.scale * state.curvature);
+    let mut step = [0.0; 4];
+    let mut escape = false;
+    if depth.abs() <= 1e3 * EPS * state.scale {
+        // On (or at rounding distance from) the intersection curve: steepest ascent.
+        step = *gradient;
+    } else {
+        // Inner block inverse (positive definite: the inner point is a closest point).
+        let mut inner_block = [[0.0; 4]; 4];
+        for i in 0..q {
+            for j in 0..q {
+                inner_block[i][j] = state.hs[i0 + i][i0 + j];
+            }
+        }
+        let inner_eigen = sym_eigen(&inner_block, q);
+        let mut inner_inv = [[0.0; 4]; 4];
+        for k in 0..q {
+            let lambda = inner_eigen.values[k].abs().max(floor);
+            for i in 0..q {
+                for j in 0..q {
+                    inner_inv[i][j] +=
+                        inner_eigen.vectors[i][k] * inner_eigen.vectors[j][k] / lambda;
+                }
+            }
+        }
+        // Hess D = (S − ∇D ∇Dᵀ) / D with S the Schur complement of the inner block.
+        let mut hess = [[0.0; 4]; 4];
+        for i in 0..p {
+            for j in 0..p {
+                let mut v = state.hs[o0 + i][o0 + j];
+                for k in 0..q {
+                    for l in 0..q {
+                        v -= state.hs[o0 + i][i0 + k] * inner_inv[k][l] * state.hs[i0 + l][o0 + j];
+                    }
+                }
+                hess[i][j] = (v - gradient[o0 + i] * gradient[o0 + j]) / depth;
+            }
+        }
+        let eigen = sym_eigen(&hess, p);
+        let floor = floor / depth.abs();
+        for k in 0..p {
+            let lambda = -eigen.values[k].abs().max(floor);
+            let c: f64 = (0..p).map(|i| eigen.vectors[i][k] * gradient[o0 + i]).sum();
+            for i in 0..p {
+                step[o0 + i] -= eigen.vectors[i][k] * c / lambda;
+            }
+        }
+        // At a stationary minimum or saddle of D (the outer point on the far side, say) the
+        // Newton step vanishes: leave along the direction of positive curvature.
+        let top = p.saturating_sub(1);
+        if p > 0
+            && step.iter().all(|s| s.abs() <= 4.0 * EPS * state.scale)
+            && eigen.values[top] > floor
+        {
+            for i in 0..p {
+                step[o0 + i] = eigen.vectors[i][top] * radius;
+            }
+            escape = true;
+        }
+    }
+    let length = step.iter().map(|s| s * s).sum::<f64>().sqrt();
+    if length > radius {
+        for s in &mut step {
+            *s *= radius / length;
+        }
+    }
+    (step, escape)
+}

@@ -1,0 +1,20 @@
+//! Starting points: each seed point projected onto its exact feature along the normal (the
+//! closest point on the feature, by the same safeguarded Newton with the other side fixed), as
+//! in the paper's Stage 3.
+
+use crate::feature_eval::{Body, Loc};
+use crate::newton::{Solution, minimize_projection};
+use crate::options::NewtonOptions;
+use geom_param::DVec3;
+
+/// The closest point to `target` (A's frame) on `body`'s feature near `start`, switching feature
+/// where the projection leaves a face. `base_scale` as in [`solve`].
+pub(crate) fn project(
+    body: &Body,
+    start: Loc,
+    target: DVec3,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Solution {
+    minimize_projection(body, target, start, base_scale, options)
+}

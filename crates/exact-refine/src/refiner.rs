@@ -1,0 +1,126 @@
+//! The Stage 3 boundary: the [`Refiner`] trait and its result types.
+
+use geom_param::{DPose3, DVec3, FeatureLocation, Seed, Solid};
+
+/// Stage 3 of the paper: from a seed (approximately closest points on two exact features),
+/// the exact closest point pair of those features, with diagnostics.
+///
+/// # Contract
+/// - **Frames.** Everything is computed and returned in A's object frame. B is posed in A's
+///   frame by `pose_ab`: `point_in_a = pose_ab * point_in_b`. `seed.a.local_point` is in A's
+///   frame, `seed.b.local_point` in B's own frame; `seed.a.location` is a feature of `a`,
+///   `seed.b.location` one of `b`.
+/// - **Units.** Millimetres and radians.
+/// - **What "closest" means.** For separated features, a local minimum of |P_a − P_b| over the
+///   two features (the seed decides which one). For penetrating features, the pair whose
+///   connecting vector is anti-parallel to the normals and which locally maximises the depth:
+///   a critical point of ½|P_a − P_b|² that is a saddle of it (see
+///   [`RefineDiagnostics::is_local_minimum`]). [`RefinedContact::distance`] is signed: negative
+///   when penetrating, measured along [`RefinedContact::normal`].
+/// - **Features move.** When the closest point leaves a face across a side, the result is on
+///   the bounding edge or vertex (and back onto a face when the minimum is inside it);
+///   `location_a` and `location_b` are the final features with their parameters wrapped into
+///   the domain.
+/// - **Non-convergence is a value.** The result always has finite points and a unit normal;
+///   [`RefineDiagnostics::status`] says whether they are the answer.
+///
+/// # Panics
+/// Never: ids that do not belong to the solids, a non-finite pose or non-finite seed
+/// points give [`RefineStatus::InvalidInput`].
+///
+/// # Errors
+/// None are returned: every outcome, including bad input, is a [`RefineStatus`].
+pub trait Refiner {
+    /// Caller-owned scratch (if any), reused across calls so that a query allocates nothing.
+    type Scratch: Default + Send;
+
+    /// Refines `seed` (seed.a on solid `a`, seed.b on solid `b`, each `SeedPoint::local_point`
+    /// in its own object frame) with B posed in A's frame by `pose_ab`
+    /// (point_in_a = pose_ab * point_in_b).
+    fn refine(
+        &self,
+        a: &Solid,
+        b: &Solid,
+        pose_ab: &DPose3,
+        seed: &Seed,
+        scratch: &mut Self::Scratch,
+    ) -> RefinedContact;
+}
+
+/// The exact closest pair of two features, in A's frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RefinedContact {
+    /// On A, in A's frame (mm).
+    pub point_a: DVec3,
+    /// On B, in A's frame (mm).
+    pub point_b: DVec3,
+    /// Final feature and parameters on A (periodic parameters wrapped into the domain).
+    pub location_a: FeatureLocation,
+    /// Final feature and parameters on B.
+    pub location_b: FeatureLocation,
+    /// Signed distance (mm): (point_b − point_a) · normal; negative when penetrating.
+    pub distance: f64,
+    /// Unit normal from A to B in A's frame: A's outward normal at `point_a` when that is on a
+    /// face, otherwise the direction of point_b − point_a (reversed when penetrating).
+    pub normal: DVec3,
+    /// How far to trust the above.
+    pub diagnostics: RefineDiagnostics,
+}
+
+/// How the refinement went, and how far to trust its answer.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RefineDiagnostics {
+    /// Newton steps of the pair solve (the two seed projections are not counted).
+    pub iterations: u32,
+    /// Largest tangential component of the connecting vector at the end (mm): for each
+    /// parameter x_i, |(P_a − P_b) · ∂P/∂x_i| / |∂P/∂x_i|. Zero at an exact critical point.
+    pub gradient_norm: f64,
+    /// Condition number of the Hessian of ½|P_a − P_b|² with each variable scaled by its speed
+    /// |∂P/∂x_i| (so all variables are arc lengths in mm): largest over smallest eigenvalue
+    /// magnitude. `f64::INFINITY` when the smallest is exactly zero, 1 when there are no
+    /// variables (vertex against vertex). Near touch it grows like 1 / (gap x curvature).
+    pub condition: f64,
+    /// Stationary to tolerance (or the Newton step fell below rounding): `status` is
+    /// [`RefineStatus::Converged`] or [`RefineStatus::ContinuousContact`].
+    pub converged: bool,
+    /// The converged point satisfies the second-order condition for a local minimum of the
+    /// *signed* distance: separated, no eigenvalue of the Hessian below −(rounding floor), i.e.
+    /// a local minimum of |P_a − P_b|, not a saddle or maximum; penetrating, exactly the
+    /// min(n_a, n_b) relative-sliding directions are negative (the deepest pair) and the others
+    /// are not. False when not converged.
+    pub is_local_minimum: bool,
+    /// Estimated absolute error of `distance` (mm): rounding of the coordinates
+    /// (16 ε x coordinate scale) plus the change of the gap over `point_error_estimate`.
+    pub error_estimate: f64,
+    /// Estimated error of the points along the feature (mm): the tangential residual plus its
+    /// rounding floor over the smallest Hessian eigenvalue. Near touch that eigenvalue is about
+    /// gap x relative curvature, so at a 1e-9 mm gap the points are only good to roughly
+    /// ε x scale / (1e-9 x curvature) while the distance stays good to rounding.
+    /// `f64::INFINITY` for a continuous contact (any point of the degenerate set is an answer).
+    pub point_error_estimate: f64,
+    /// How it ended.
+    pub status: RefineStatus,
+}
+
+/// How a refinement ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RefineStatus {
+    /// An isolated critical point found to tolerance.
+    Converged,
+    /// Converged on a degenerate set of minima (conformal spheres, parallel cylinders,
+    /// flat-on-flat, paper section IV): the Hessian has an eigenvalue within rounding of zero.
+    /// The distance is exact; the points are one representative pair of the set.
+    ContinuousContact,
+    /// `NewtonOptions::max_iterations` steps without meeting the tolerance.
+    IterationLimit,
+    /// The trust region shrank below rounding before the tolerance was met (the Hessian model
+    /// stopped predicting the objective).
+    Stalled,
+    /// More than `NewtonOptions::max_feature_switches` switches between faces, edges and
+    /// vertices (a minimum on a crease the iteration kept crossing).
+    FeatureSwitchLimit,
+    /// The input cannot be refined: a feature id that does not belong to its solid, a
+    /// non-finite pose, or a seed with neither finite parameters nor a finite point. Points are
+    /// zero and the distance is `f64::INFINITY`.
+    InvalidInput,
+}

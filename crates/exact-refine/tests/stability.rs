@@ -1,0 +1,373 @@
+//! Stiff and extreme cases (docs/STABILITY.md tabulates them): each converges to its closed
+//! form within the error it states, or reports the degenerate or non-converged state, and never
+//! gives NaN, loops or panics. Run with `--nocapture` to print the table rows.
+
+mod support;
+
+use exact_refine::{RefineStatus, RefinedContact};
+use geom_param::{DPose3, DQuat, DVec3, FeatureId, Seed};
+use std::f64::consts::{FRAC_PI_2, PI};
+use support::*;
+
+fn report(case: &str, c: &RefinedContact, distance: f64) {
+    let d = &c.diagnostics;
+    println!(
+        "| {case} | {:?} | {:.1e} (est {:.1e}) | {:.1e} | {} |",
+        d.status,
+        (c.distance - distance).abs(),
+        d.error_estimate,
+        d.point_error_estimate,
+        d.iterations
+    );
+}
+
+/// Sphere (radius r) in a socket of radius big, touching along direction w at gap g.
+fn sphere_in_socket(r: f64, big: f64, gap: f64, w: DVec3) -> (RefinedContact, DVec3, DVec3) {
+    let a = socket(big, 2.0 * big, 0.5 * big);
+    let b = sphere(r);
+    let center = w * (big - r - gap);
+    let seed = Seed {
+        a: seed_point(&a, face(3, 0.3, 0.6), DVec3::ZERO),
+        b: seed_point(&b, face(0, 0.3, 0.3), DVec3::ZERO),
+    };
+    let c = refine(&a, &b, &pose(DQuat::IDENTITY, center), &seed);
+    (c, w * big, center + w * r)
+}
+
+#[test]
+fn conformal_sphere_in_socket() {
+    let w = DVec3::new(40f64.to_radians().sin(), 0.0, -40f64.to_radians().cos());
+    let r = 10.0;
+    // Resting against the side with a 5e-6 mm gap in a socket 1e-5 mm wider: isolated, but the
+    // gap function is flat to 1e-7 /mm, so the points are poorly defined (and say so).
+    let (c, pa, pb) = sphere_in_socket(r, r * (1.0 + 1e-6), 5e-6, w);
+    report(
+        "sphere r=10 resting in socket r(1+1e-6), gap 5e-6",
+        &c,
+        5e-6,
+    );
+    assert_converged_at(&c, 20.0, "resting");
+    assert_answer(&c, 5e-6, pa, pb, "resting");
+    // Concentric: every radial pair is closest.
+    let (c, _, _) = sphere_in_socket(r, r * (1.0 + 1e-6), r * 1e-6, w);
+    report("sphere r=10 concentric in socket r(1+1e-6)", &c, r * 1e-6);
+    assert_finite(&c, "concentric");
+    assert_eq!(
+        c.diagnostics.status,
+        RefineStatus::ContinuousContact,
+        "{c:?}"
+    );
+    assert!(
+        (c.distance - r * 1e-6).abs() <= c.diagnostics.error_estimate,
+        "{c:?}"
+    );
+    // Same radius, concentric: the surfaces coincide.
+    let (c, _, _) = sphere_in_socket(r, r, 0.0, w);
+    report("sphere r=10 in socket r=10 (coincident)", &c, 0.0);
+    assert_finite(&c, "coincident");
+    assert_eq!(
+        c.diagnostics.status,
+        RefineStatus::ContinuousContact,
+        "{c:?}"
+    );
+    assert!(c.distance.abs() <= c.diagnostics.error_estimate, "{c:?}");
+}
+
+#[test]
+fn parallel_cylinders_and_flat_on_flat() {
+    let (a, b) = (cylinder(5.0, 20.0), cylinder(3.0, 10.0));
+    let gap = 0.25;
+    let pose_ab = pose(DQuat::IDENTITY, DVec3::new(8.0 + gap, 0.0, 5.0));
+    let seed = Seed {
+        a: seed_point(&a, face(1, 0.2, 0.5), DVec3::ZERO),
+        b: seed_point(&b, face(1, PI - 0.2, 0.4), DVec3::ZERO),
+    };
+    let c = refine(&a, &b, &pose_ab, &seed);
+    report("parallel cylinders r=5, r=3, gap 0.25", &c, gap);
+    assert_finite(&c, "parallel");
+    assert_eq!(
+        c.diagnostics.status,
+        RefineStatus::ContinuousContact,
+        "{c:?}"
+    );
+    assert!(
+        (c.distance - gap).abs() <= c.diagnostics.error_estimate,
+        "{c:?}"
+    );
+    assert!(c.normal.distance(DVec3::X) < 1e-12, "{c:?}");
+
+    // B's bottom disk 0.25 above A's top disk, overlapping.
+    let pose_ab = pose(DQuat::IDENTITY, DVec3::new(1.0, 0.5, 20.0 + gap));
+    let seed = Seed {
+        a: seed_point(&a, face(2, 0.5, 0.5), DVec3::ZERO),
+        b: seed_point(&b, face(0, 0.5, 0.5), DVec3::ZERO),
+    };
+    let c = refine(&a, &b, &pose_ab, &seed);
+    report("flat disk on flat disk, gap 0.25", &c, gap);
+    assert_finite(&c, "flat");
+    assert_eq!(
+        c.diagnostics.status,
+        RefineStatus::ContinuousContact,
+        "{c:?}"
+    );
+    assert!(
+        (c.distance - gap).abs() <= c.diagnostics.error_estimate,
+        "{c:?}"
+    );
+    assert!(c.normal.distance(DVec3::Z) < 1e-12, "{c:?}");
+}
+
+#[test]
+fn contact_at_pole_apex_edge_and_vertex() {
+    // Pole: A's north pole under B's bottom disk, seed near the pole on the face.
+    let (a, b) = (sphere(10.0), cylinder(3.0, 2.0));
+    let gap = 1e-3;
+    let seed = Seed {
+        a: seed_point(&a, face(0, 1.0, 0.97), DVec3::ZERO),
+        b: seed_point(&b, face(0, 0.0, 0.3), DVec3::ZERO),
+    };
+    let c = refine(
+        &a,
+        &b,
+        &pose(DQuat::IDENTITY, DVec3::new(0.0, 0.0, 10.0 + gap)),
+        &seed,
+    );
+    report("sphere pole under a flat disk, gap 1e-3", &c, gap);
+    assert_converged(&c, "pole");
+    assert_answer(
+        &c,
+        gap,
+        DVec3::new(0.0, 0.0, 10.0),
+        DVec3::new(0.0, 0.0, 10.0 + gap),
+        "pole",
+    );
+
+    // Apex: a cone apex (B) pointing down at A's top disk.
+    let (a, b) = (cylinder(5.0, 2.0), cone(1.0, 3.0));
+    let rotation = DQuat::from_rotation_x(PI); // apex now at local -z
+    let apex = DVec3::new(1.0, 2.0, 2.0 + gap);
+    let pose_ab = pose(rotation, apex + DVec3::new(0.0, 0.0, 3.0));
+    let seed = Seed {
+        a: seed_point(&a, face(2, 1.0, 0.5), DVec3::ZERO),
+        b: seed_point(&b, face(1, 0.0, 0.9), DVec3::ZERO),
+    };
+    let c = refine(&a, &b, &pose_ab, &seed);
+    report("cone apex above a flat disk, gap 1e-3", &c, gap);
+    assert_converged(&c, "apex");
+    assert_eq!(
+        c.location_b.feature(),
+        FeatureId::Vertex(geom_param::VertexId(1)),
+        "{c:?}"
+    );
+    assert_answer(&c, gap, DVec3::new(1.0, 2.0, 2.0), apex, "apex");
+
+    // Exactly on an edge circle: a sphere in the rim's normal cone, seeds on the faces.
+    let (a, b) = (cylinder(5.0, 2.0), sphere(1.0));
+    let out = DVec3::new(1.0, 0.0, 1.0).normalize();
+    let corner = DVec3::new(5.0, 0.0, 2.0);
+    let seed = Seed {
+        a: seed_point(&a, face(1, 0.1, 0.9), DVec3::ZERO),
+        b: seed_point(&b, face(0, 3.0, 0.3), DVec3::ZERO),
+    };
+    let c = refine(
+        &a,
+        &b,
+        &pose(DQuat::IDENTITY, corner + out * (1.0 + gap)),
+        &seed,
+    );
+    report("sphere against a cylinder rim (edge), gap 1e-3", &c, gap);
+    assert_converged(&c, "edge");
+    assert_eq!(
+        c.location_a.feature(),
+        FeatureId::Edge(geom_param::EdgeId(1)),
+        "{c:?}"
+    );
+    assert_answer(&c, gap, corner, corner + out * gap, "edge");
+
+    // At a vertex: a sphere above a cone's apex (A), seed on the mantle.
+    let (a, b) = (cone(2.0, 3.0), sphere(1.0));
+    let seed = Seed {
+        a: seed_point(&a, face(1, 0.4, 0.8), DVec3::ZERO),
+        b: seed_point(&b, face(0, 0.4, 0.2), DVec3::ZERO),
+    };
+    let c = refine(
+        &a,
+        &b,
+        &pose(DQuat::IDENTITY, DVec3::new(0.0, 0.0, 3.0 + 1.0 + gap)),
+        &seed,
+    );
+    report("sphere above a cone apex (vertex), gap 1e-3", &c, gap);
+    assert_converged(&c, "vertex");
+    assert_eq!(
+        c.location_a.feature(),
+        FeatureId::Vertex(geom_param::VertexId(1)),
+        "{c:?}"
+    );
+    assert_answer(
+        &c,
+        gap,
+        DVec3::new(0.0, 0.0, 3.0),
+        DVec3::new(0.0, 0.0, 3.0 + gap),
+        "vertex",
+    );
+}
+
+/// Two spheres (radii ra, rb) at gap `gap` along `dir`, posed in the world by `world_a`,
+/// `world_b` = world_a * (their relative pose); returns the result and the expected points in
+/// A's frame.
+fn two_spheres(ra: f64, rb: f64, gap: f64, world_a: DPose3) -> (RefinedContact, DVec3, DVec3) {
+    let dir = DVec3::new(0.3, -0.5, 0.8).normalize();
+    let (a, b) = (sphere(ra), sphere(rb));
+    let relative = pose(DQuat::from_rotation_y(0.7), dir * (ra + rb + gap));
+    let world_b = world_a * relative;
+    let pose_ab = world_a.inverse() * world_b; // as the pipeline computes it
+    // Seeds 0.05 rad (in u and v) from the answer, as a mesh phase would give.
+    let params = |w: DVec3| {
+        (
+            w.y.atan2(w.x).rem_euclid(2.0 * PI),
+            (w.z.asin() + FRAC_PI_2) / PI,
+        )
+    };
+    let (ua, va) = params(dir);
+    let (ub, vb) = params(relative.rotation.inverse() * -dir);
+    let seed = Seed {
+        a: seed_point(&a, face(0, ua + 0.05, va - 0.05 / PI), DVec3::ZERO),
+        b: seed_point(&b, face(0, ub - 0.05, vb + 0.05 / PI), DVec3::ZERO),
+    };
+    (
+        refine(&a, &b, &pose_ab, &seed),
+        dir * ra,
+        relative.translation - dir * rb,
+    )
+}
+
+#[test]
+fn large_offsets_tiny_objects_and_scale_contrast() {
+    // Both objects 1e6 mm from the origin: pose_ab carries rounding of 1e6 x ε ≈ 2e-10 mm.
+    let far = pose(
+        DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 3.0).normalize(), 1.0),
+        DVec3::splat(1e6),
+    );
+    let (c, pa, pb) = two_spheres(10.0, 4.0, 0.01, far);
+    report("spheres 1e6 mm from the origin, gap 1e-2", &c, 0.01);
+    assert_converged(&c, "far");
+    let composed = 1e6 * 8.0 * f64::EPSILON; // rounding of the pose composition itself
+    assert!(
+        (c.distance - 0.01).abs() <= c.diagnostics.error_estimate + composed,
+        "{c:?}"
+    );
+    assert!(
+        c.point_a.distance(pa) <= c.diagnostics.point_error_estimate + composed,
+        "{c:?}"
+    );
+    assert!(
+        c.point_b.distance(pb) <= c.diagnostics.point_error_estimate + composed,
+        "{c:?}"
+    );
+
+    // Tiny objects: 1e-3 mm spheres 1e-4 mm apart.
+    let (c, pa, pb) = two_spheres(1e-3, 1e-3, 1e-4, DPose3::IDENTITY);
+    report("spheres r=1e-3, gap 1e-4", &c, 1e-4);
+    assert_converged(&c, "tiny");
+    assert_answer(&c, 1e-4, pa, pb, "tiny");
+    // Accuracy relative to the object size (1e-3 mm), as for hand-sized objects.
+    assert!(c.diagnostics.error_estimate <= 1e-14 * 1e-3, "{c:?}");
+
+    // A 1e-3 mm tip against a 1e3 mm face.
+    let (c, pa, pb) = two_spheres(1e3, 1e-3, 1e-2, DPose3::IDENTITY);
+    report("tip r=1e-3 against face r=1e3, gap 1e-2", &c, 1e-2);
+    assert_converged(&c, "tip");
+    assert_answer(&c, 1e-2, pa, pb, "tip");
+}
+
+#[test]
+fn nearly_parallel_cylinders() {
+    // Axes 8.25 mm apart (gap 0.25), crossing at 1e-9 rad: the minimum is isolated in exact
+    // arithmetic, but the relative curvature along the axes is ~1e-18 /mm, far below rounding,
+    // so it is reported as continuous with the exact distance.
+    let (a, b) = (cylinder(5.0, 20.0), cylinder(3.0, 20.0));
+    let gap = 0.25;
+    let rotation = DQuat::from_rotation_x(1e-9);
+    let pose_ab = pose(
+        rotation,
+        DVec3::new(8.0 + gap, 0.0, 10.0) - rotation * DVec3::new(0.0, 0.0, 10.0),
+    );
+    let seed = Seed {
+        a: seed_point(&a, face(1, 0.2, 0.3), DVec3::ZERO),
+        b: seed_point(&b, face(1, PI + 0.2, 0.7), DVec3::ZERO),
+    };
+    let c = refine(&a, &b, &pose_ab, &seed);
+    report("cylinders crossing at 1e-9 rad, gap 0.25", &c, gap);
+    assert_finite(&c, "nearly parallel");
+    assert!(c.diagnostics.converged, "{c:?}");
+    assert!(
+        (c.distance - gap).abs() <= c.diagnostics.error_estimate,
+        "{c:?}"
+    );
+}
+
+#[test]
+fn far_and_wrong_side_starts() {
+    let (ra, rb) = (10.0, 4.0);
+    let (a, b) = (sphere(ra), sphere(rb));
+    let dir = DVec3::X;
+    for (name, gap, sa, sb) in [
+        // Seeds on the far sides of both spheres (antipodal to the answer).
+        (
+            "far start: seeds antipodal, gap 0.5",
+            0.5,
+            face(0, PI, 0.5),
+            face(0, 0.0, 0.5),
+        ),
+        // Seeds sliding past each other so that the start pair penetrates.
+        (
+            "wrong-side start on a separated pair, gap 0.5",
+            0.5,
+            face(0, 0.9, 0.5),
+            face(0, PI - 0.9, 0.5),
+        ),
+        // Penetrating pair, seeds far off.
+        (
+            "penetration -1, seeds 1 rad off",
+            -1.0,
+            face(0, 1.0, 0.5),
+            face(0, PI + 1.0, 0.5),
+        ),
+    ] {
+        let seed = Seed {
+            a: seed_point(&a, sa, DVec3::ZERO),
+            b: seed_point(&b, sb, DVec3::ZERO),
+        };
+        let center = dir * (ra + rb + gap);
+        let c = refine(&a, &b, &pose(DQuat::IDENTITY, center), &seed);
+        report(name, &c, gap);
+        assert_converged(&c, name);
+        assert_answer(&c, gap, dir * ra, center - dir * rb, name);
+    }
+}
+
+#[test]
+fn bad_input_is_a_status_not_a_panic() {
+    let (a, b) = (sphere(1.0), sphere(1.0));
+    let good = Seed {
+        a: seed_point(&a, face(0, 0.0, 0.5), DVec3::ZERO),
+        b: seed_point(&b, face(0, PI, 0.5), DVec3::ZERO),
+    };
+    let mut bad_id = good;
+    bad_id.b.location = face(7, 0.0, 0.5);
+    let mut nan_seed = good;
+    nan_seed.a.location = face(0, f64::NAN, f64::INFINITY);
+    nan_seed.a.local_point = DVec3::NAN;
+    let nan_pose = pose(DQuat::IDENTITY, DVec3::new(f64::NAN, 0.0, 0.0));
+    let ok_pose = pose(DQuat::IDENTITY, DVec3::new(3.0, 0.0, 0.0));
+    let c = refine(&a, &b, &ok_pose, &bad_id);
+    assert_eq!(c.diagnostics.status, RefineStatus::InvalidInput);
+    assert_finite(&c, "bad id");
+    let c = refine(&a, &b, &nan_pose, &good);
+    assert_eq!(c.diagnostics.status, RefineStatus::InvalidInput);
+    assert_finite(&c, "nan pose");
+    // Non-finite seed parameters are reset to the domain middle and the solve still converges.
+    let c = refine(&a, &b, &ok_pose, &nan_seed);
+    assert_finite(&c, "nan seed");
+    assert!((c.distance - 1.0).abs() < 1e-12, "{c:?}");
+}
