@@ -1,0 +1,149 @@
+//! Tree-vs-tree traversal: simultaneous descent of two [`HybridTree`]s under a relative pose.
+//!
+//! A pair of nodes is tested by the separating-axis test of their boxes (15 axes, exact);
+//! two leaves whose boxes overlap are then tested with their exact leaf volumes. When the
+//! boxes of two internal nodes overlap, the one with the larger box is split (the usual rule
+//! that keeps the two sides' boxes of similar size). Every ancestor box covers the leaf
+//! volumes below it, so no overlapping leaf pair is pruned.
+
+use geom_param::{ComponentId, DPose3};
+use glam::{DMat3, DQuat, DVec3};
+
+use crate::bevelled_volume::BevelledVolume;
+use crate::hybrid_tree::{HybridTree, Node, NodeKind};
+use crate::obb::Obb;
+
+/// Caller-owned scratch of [`overlapping_pairs`]: the stack of node pairs still to test. It
+/// only grows (to at most about `depth_a + depth_b` entries), so queries allocate nothing once
+/// it has reached that size.
+#[derive(Clone, Debug, Default)]
+pub struct TraversalScratch {
+    stack: Vec<(u32, u32)>,
+}
+
+/// B's pose in A's frame in the forms the tests use, with its inverse computed on demand.
+struct RelativePose {
+    rot: DQuat,
+    rot_matrix: DMat3,
+    trans: DVec3,
+}
+
+impl RelativePose {
+    fn new(pose_ab: &DPose3) -> Self {
+        // A rotation that is not unit length would scale B; renormalising keeps the tests
+        // those of a rigid motion (a zero or non-finite rotation becomes NaN, which separates
+        // nothing, so every pair is reported).
+        let rot = pose_ab.rotation.normalize();
+        RelativePose {
+            rot,
+            rot_matrix: DMat3::from_quat(rot),
+            trans: pose_ab.translation,
+        }
+    }
+
+    /// B's box in A's frame.
+    fn box_in_a(&self, b: &Obb) -> Obb {
+        Obb {
+            center: self.rot_matrix * b.center + self.trans,
+            axes: self.rot_matrix * b.axes,
+            half_extents: b.half_extents,
+        }
+    }
+
+    /// A's pose in B's frame: `p_b = rot^-1 (p_a - trans)`.
+    fn inverse(&self) -> (DQuat, DVec3) {
+        let inv = self.rot.conjugate();
+        (inv, -(inv * self.trans))
+    }
+}
+
+/// Clears `out` and pushes every (component of A, component of B) whose leaf volumes overlap,
+/// B being posed in A's frame by `pose_ab` (`point_in_a = pose_ab * point_in_b`). Each pair
+/// is pushed once, in depth-first order. See [`crate::BroadPhase::overlapping_components`].
+pub fn overlapping_pairs(
+    a: &HybridTree,
+    b: &HybridTree,
+    pose_ab: &DPose3,
+    scratch: &mut TraversalScratch,
+    out: &mut Vec<(ComponentId, ComponentId)>,
+) {
+    out.clear();
+    let stack = &mut scratch.stack;
+    stack.clear();
+    let (nodes_a, nodes_b) = (a.nodes(), b.nodes());
+    if nodes_a.is_empty() || nodes_b.is_empty() {
+        return;
+    }
+    let pose = RelativePose::new(pose_ab);
+    stack.push((0, 0));
+    while let Some((ia, ib)) = stack.pop() {
+        let (node_a, node_b) = (&nodes_a[ia as usize], &nodes_b[ib as usize]);
+        if !boxes_overlap(node_a, node_b, &pose) {
+            continue;
+        }
+        match (&node_a.kind, &node_b.kind) {
+            (
+                NodeKind::Leaf {
+                    component: ca,
+                    bevelled: va,
+                },
+                NodeKind::Leaf {
+                    component: cb,
+                    bevelled: vb,
+                },
+            ) => {
+                if leaves_overlap(node_a, va.as_deref(), node_b, vb.as_deref(), &pose) {
+                    out.push((*ca, *cb));
+                }
+            }
+            (NodeKind::Internal { children }, NodeKind::Leaf { .. }) => {
+                stack.extend(children.iter().map(|&c| (c, ib)));
+            }
+            (NodeKind::Leaf { .. }, NodeKind::Internal { children }) => {
+                stack.extend(children.iter().map(|&c| (ia, c)));
+            }
+            (NodeKind::Internal { children: ka }, NodeKind::Internal { children: kb }) => {
+                if box_size(node_a) >= box_size(node_b) {
+                    stack.extend(ka.iter().map(|&c| (c, ib)));
+                } else {
+                    stack.extend(kb.iter().map(|&c| (ia, c)));
+                }
+            }
+        }
+    }
+}
+
+/// Whether the two nodes' boxes overlap (an unbounded box overlaps everything).
+fn boxes_overlap(a: &Node, b: &Node, pose: &RelativePose) -> bool {
+    match (&a.bounds, &b.bounds) {
+        (Some(box_a), Some(box_b)) => box_a.overlaps(&pose.box_in_a(box_b)),
+        _ => true,
+    }
+}
+
+/// The exact test of two leaves whose boxes overlap: bevelled against bevelled, bevelled
+/// against a box leaf, or (two box leaves, or an unbounded leaf) the box test already done.
+fn leaves_overlap(
+    a: &Node,
+    va: Option<&BevelledVolume>,
+    b: &Node,
+    vb: Option<&BevelledVolume>,
+    pose: &RelativePose,
+) -> bool {
+    match (va, vb, &a.bounds, &b.bounds) {
+        (Some(va), Some(vb), _, _) => va.overlaps(vb, pose.rot, pose.trans),
+        (Some(va), None, _, Some(box_b)) => va.overlaps_obb(box_b, pose.rot, pose.trans),
+        (None, Some(vb), Some(box_a), _) => {
+            let (rot_ba, trans_ba) = pose.inverse();
+            vb.overlaps_obb(box_a, rot_ba, trans_ba)
+        }
+        _ => true,
+    }
+}
+
+/// Size used to choose which internal node to split: the sum of the box's half extents (mm),
+/// infinite when unbounded.
+fn box_size(node: &Node) -> f64 {
+    node.bounds
+        .map_or(f64::INFINITY, |b| b.half_extents.element_sum())
+}
