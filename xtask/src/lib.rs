@@ -2,6 +2,7 @@
 
 pub mod obj;
 pub mod paper_objects;
+pub mod scenes;
 
 use geom_param::MeshOptions;
 use std::path::{Path, PathBuf};
@@ -18,7 +19,8 @@ pub fn generate_fixtures() -> Result<Vec<(PathBuf, String)>, String> {
     let options = MeshOptions {
         chordal_tolerance: FIXTURE_OBJ_TOLERANCE,
     };
-    for description in paper_objects::paper_objects() {
+    let objects = paper_objects::paper_objects();
+    for description in &objects {
         let name = description.name.clone();
         let model = description
             .build(&options)
@@ -29,6 +31,9 @@ pub fn generate_fixtures() -> Result<Vec<(PathBuf, String)>, String> {
             dir.join(format!("{name}.obj")),
             obj::to_obj(&model, paper_objects::GENERATED_NOTE),
         ));
+    }
+    for (name, contents) in scenes::generate_scenes(&objects)? {
+        files.push((Path::new("fixtures/scenes").join(name), contents));
     }
     Ok(files)
 }

@@ -1,0 +1,270 @@
+//! The three-stage pipeline, generic over its stages.
+
+use crate::merge::insert_or_merge;
+use crate::options::{ContactOptions, OptionsError, QueryDepth};
+use crate::report::{Contact, PairReport, PairState};
+use bvh_hybrid::{BroadPhase, HybridBvh};
+use exact_refine::{NewtonRefiner, RefinedContact, Refiner};
+use geom_param::{ComponentId, DPose3, LoadError, MeshOptions, ObjectDescription, ObjectModel, Seed};
+use mesh_narrowphase::{ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshVerdict};
+use std::time::Instant;
+
+/// An object with all its preprocessing: the exact model and each stage's prepared data. Built
+/// once by [`ContactPipeline::prepare`] and shared by every query.
+pub struct PreparedObject<B: BroadPhase = HybridBvh, M: MeshPhase = MeshNarrowphase> {
+    /// The exact model with its components and meshes.
+    pub model: ObjectModel,
+    /// Stage 1's tree.
+    pub tree: B::Tree,
+    /// Stage 2's per-object data.
+    pub mesh: M::Prepared,
+}
+
+/// Caller-owned working memory of queries: pass the same one to every query of a thread so
+/// that steady-state queries allocate nothing.
+pub struct QueryScratch<B: BroadPhase = HybridBvh, M: MeshPhase = MeshNarrowphase, R: Refiner = NewtonRefiner> {
+    broad: B::Scratch,
+    mesh: M::Scratch,
+    refine: R::Scratch,
+    pairs: Vec<(ComponentId, ComponentId)>,
+    mesh_out: MeshOutput,
+    seeds: Vec<Seed>,
+}
+
+impl<B: BroadPhase, M: MeshPhase, R: Refiner> Default for QueryScratch<B, M, R> {
+    fn default() -> Self {
+        Self {
+            broad: B::Scratch::default(),
+            mesh: M::Scratch::default(),
+            refine: R::Scratch::default(),
+            pairs: Vec::new(),
+            mesh_out: MeshOutput::default(),
+            seeds: Vec::new(),
+        }
+    }
+}
+
+/// Contact detection between pairs of prepared objects (paper section II).
+///
+/// Swap a stage by naming its type: `ContactPipeline::<MyBroadPhase>::with_stages(..)`.
+pub struct ContactPipeline<B: BroadPhase = HybridBvh, M: MeshPhase = MeshNarrowphase, R: Refiner = NewtonRefiner> {
+    /// Stage 1.
+    pub broad: B,
+    /// Stage 2.
+    pub mesh: M,
+    /// Stage 3.
+    pub refiner: R,
+    options: ContactOptions,
+}
+
+impl ContactPipeline {
+    /// The default stages with `options`.
+    ///
+    /// # Errors
+    /// [`OptionsError`] when the options cannot work together.
+    pub fn new(options: ContactOptions) -> Result<Self, OptionsError> {
+        Self::with_stages(HybridBvh::default(), MeshNarrowphase::default(), NewtonRefiner::default(), options)
+    }
+}
+
+impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
+    /// A pipeline from the given stages.
+    ///
+    /// # Errors
+    /// [`OptionsError`] when the options cannot work together.
+    pub fn with_stages(broad: B, mesh: M, refiner: R, options: ContactOptions) -> Result<Self, OptionsError> {
+        options.validate()?;
+        Ok(Self { broad, mesh, refiner, options })
+    }
+
+    /// The options in force.
+    #[must_use]
+    pub fn options(&self) -> &ContactOptions {
+        &self.options
+    }
+
+    /// Preprocesses a built object model for this pipeline's stages (its meshes must have been
+    /// built with the tolerance the caller wants; see [`Self::prepare_description`]).
+    #[must_use]
+    pub fn prepare(&self, model: ObjectModel) -> PreparedObject<B, M> {
+        let tree = self.broad.build(&model, self.options.margin);
+        let mesh = self.mesh.prepare(&model);
+        PreparedObject { model, tree, mesh }
+    }
+
+    /// Validates, builds (at the options' chordal tolerance) and preprocesses an object.
+    ///
+    /// # Errors
+    /// [`LoadError`] for an invalid profile or unusable tolerance.
+    pub fn prepare_description(&self, description: &ObjectDescription) -> Result<PreparedObject<B, M>, LoadError> {
+        let model = description.build(&MeshOptions { chordal_tolerance: self.options.chordal_tolerance })?;
+        Ok(self.prepare(model))
+    }
+
+    /// Queries one pair. `pose_a` and `pose_b` place the objects in the world frame; every
+    /// point and normal of the report is in the world frame.
+    ///
+    /// # Errors
+    /// [`QueryError`] for a pose that is not a rigid motion (non-finite, or a rotation
+    /// quaternion whose norm is off 1 by more than 1e-6), or a pair a stage refuses.
+    pub fn query(
+        &self,
+        a: &PreparedObject<B, M>,
+        pose_a: &DPose3,
+        b: &PreparedObject<B, M>,
+        pose_b: &DPose3,
+        scratch: &mut QueryScratch<B, M, R>,
+    ) -> Result<PairReport, QueryError> {
+        let mut report = PairReport::default();
+        self.query_into(a, pose_a, b, pose_b, scratch, &mut report)?;
+        Ok(report)
+    }
+
+    /// As [`Self::query`], writing into `report` (cleared first) to reuse its allocations.
+    ///
+    /// # Errors
+    /// As [`Self::query`].
+    pub fn query_into(
+        &self,
+        a: &PreparedObject<B, M>,
+        pose_a: &DPose3,
+        b: &PreparedObject<B, M>,
+        pose_b: &DPose3,
+        scratch: &mut QueryScratch<B, M, R>,
+        report: &mut PairReport,
+    ) -> Result<(), QueryError> {
+        report.clear();
+        check_pose(pose_a, "a")?;
+        check_pose(pose_b, "b")?;
+        let options = &self.options;
+        let pose_ab = pose_a.inverse() * *pose_b;
+
+        // Stage 1.
+        let start = Instant::now();
+        self.broad.overlapping_components(&a.tree, &b.tree, &pose_ab, &mut scratch.broad, &mut scratch.pairs);
+        report.stats.broad_ran = true;
+        report.stats.broad_us = micros(start);
+        report.stats.component_pairs = scratch.pairs.len();
+        if scratch.pairs.is_empty() {
+            return Ok(());
+        }
+
+        // Stage 2.
+        let start = Instant::now();
+        let band = ContactBand { margin: options.margin, delta1: options.delta1, delta2: options.delta2 };
+        scratch.seeds.clear();
+        let mut penetrating = false;
+        for &(ca, cb) in &scratch.pairs {
+            let verdict = self.mesh.query(
+                ComponentRef { object: &a.model, prepared: &a.mesh, component: ca },
+                ComponentRef { object: &b.model, prepared: &b.mesh, component: cb },
+                &pose_ab,
+                &band,
+                &mut scratch.mesh,
+                &mut scratch.mesh_out,
+            );
+            match verdict {
+                MeshVerdict::Separated => {}
+                MeshVerdict::Penetrating => {
+                    penetrating = true;
+                    report
+                        .penetration_witnesses
+                        .extend(scratch.mesh_out.penetration_centres.iter().map(|p| *pose_a * *p));
+                }
+                MeshVerdict::Seeds => scratch.seeds.extend_from_slice(&scratch.mesh_out.seeds),
+                MeshVerdict::InvalidInput(e) => return Err(QueryError::MeshPhase(e.to_string())),
+            }
+        }
+        report.stats.mesh_ran = true;
+        report.stats.mesh_us = micros(start);
+        report.stats.seeds = scratch.seeds.len();
+        if penetrating {
+            report.state = PairState::Penetration;
+            return Ok(());
+        }
+        if scratch.seeds.is_empty() {
+            return Ok(());
+        }
+
+        // Stage 3.
+        let start = Instant::now();
+        report.stats.refine_ran = true;
+        for seed in &scratch.seeds {
+            let refined = self.refiner.refine(&a.model.solid, &b.model.solid, &pose_ab, seed, &mut scratch.refine);
+            report.stats.refined += 1;
+            if refined.distance < options.delta1 {
+                report.state = PairState::Penetration;
+                report.penetration_witnesses.push(*pose_a * (0.5 * (refined.point_a + refined.point_b)));
+                if options.depth == QueryDepth::StateOnly {
+                    break;
+                }
+                continue;
+            }
+            if refined.distance > options.delta2 || !refined.diagnostics.is_local_minimum {
+                continue;
+            }
+            let tolerance = merge_tolerance(&refined, a.model.profile.scale().max(b.model.profile.scale()));
+            if insert_or_merge(&mut report.contacts, to_world(&refined, pose_a), tolerance) {
+                report.stats.merged += 1;
+            }
+            if options.depth == QueryDepth::StateOnly {
+                break;
+            }
+        }
+        report.stats.refine_us = micros(start);
+        if report.state != PairState::Penetration && !report.contacts.is_empty() {
+            report.state = PairState::Contact;
+        }
+        Ok(())
+    }
+}
+
+/// Why a query could not run.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum QueryError {
+    /// A pose with a non-finite component or a rotation that is not a unit quaternion.
+    #[error("pose of object {object} is not a rigid motion: {reason}")]
+    BadPose {
+        /// "a" or "b".
+        object: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The mesh phase refused the pair (prepared data from another pipeline, for instance).
+    #[error("mesh phase refused the pair: {0}")]
+    MeshPhase(String),
+}
+
+fn check_pose(pose: &DPose3, object: &'static str) -> Result<(), QueryError> {
+    let q = pose.rotation;
+    if !(q.is_finite() && pose.translation.is_finite()) {
+        return Err(QueryError::BadPose { object, reason: "a component is not a finite number".into() });
+    }
+    let norm = q.length();
+    if (norm - 1.0).abs() > 1e-6 {
+        return Err(QueryError::BadPose { object, reason: format!("rotation quaternion has norm {norm}") });
+    }
+    Ok(())
+}
+
+/// Two refined seeds are the same minimum when their points agree to this distance (mm): far
+/// above the solver's point accuracy, far below any two distinct minima of the fixtures.
+fn merge_tolerance(refined: &RefinedContact, scale: f64) -> f64 {
+    (1e-6 * scale).max(100.0 * refined.diagnostics.point_error_estimate)
+}
+
+fn to_world(refined: &RefinedContact, pose_a: &DPose3) -> Contact {
+    Contact {
+        point_a: *pose_a * refined.point_a,
+        point_b: *pose_a * refined.point_b,
+        distance: refined.distance,
+        normal: pose_a.rotation * refined.normal,
+        location_a: refined.location_a,
+        location_b: refined.location_b,
+        diagnostics: refined.diagnostics,
+    }
+}
+
+fn micros(start: Instant) -> f64 {
+    start.elapsed().as_secs_f64() * 1e6
+}

@@ -1,0 +1,95 @@
+//! What a query returns: the pair's state, its contacts and per-stage statistics.
+
+use exact_refine::RefineDiagnostics;
+use geom_param::FeatureLocation;
+use glam::DVec3;
+
+/// The interaction state of a pair (paper eq. 1): with d the minimum distance, contact when
+/// delta1 <= d <= delta2, penetration below delta1, separated above delta2.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PairState {
+    /// d > delta2 everywhere.
+    #[default]
+    Separated,
+    /// Every local minimum of distance found is >= delta1 and at least one is <= delta2.
+    Contact,
+    /// The surfaces interpenetrate by more than -delta1 somewhere (the meshes intersect, or an
+    /// exact minimum lies below delta1).
+    Penetration,
+}
+
+/// One contact: a local minimum of the distance between the two surfaces inside the band.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// Closest point on object A (world frame, mm).
+    pub point_a: DVec3,
+    /// Closest point on object B (world frame, mm).
+    pub point_b: DVec3,
+    /// Signed distance (mm): point_b = point_a + distance * normal.
+    pub distance: f64,
+    /// Unit normal from A to B (world frame): A's outward normal at `point_a`.
+    pub normal: DVec3,
+    /// The exact feature of A and its parameters.
+    pub location_a: FeatureLocation,
+    /// The exact feature of B and its parameters.
+    pub location_b: FeatureLocation,
+    /// The refiner's account of how the point was found (iterations, residual, conditioning).
+    pub diagnostics: RefineDiagnostics,
+}
+
+/// Which stages ran for a query, their wall times and their counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageStats {
+    /// Stage 1 ran (always, for a full query).
+    pub broad_ran: bool,
+    /// Stage 2 ran on at least one component pair.
+    pub mesh_ran: bool,
+    /// Stage 3 ran on at least one seed.
+    pub refine_ran: bool,
+    /// Wall time of Stage 1 (µs).
+    pub broad_us: f64,
+    /// Wall time of Stage 2 (µs).
+    pub mesh_us: f64,
+    /// Wall time of Stage 3 (µs).
+    pub refine_us: f64,
+    /// Component pairs reported by Stage 1.
+    pub component_pairs: usize,
+    /// Seeds produced by Stage 2.
+    pub seeds: usize,
+    /// Seeds refined by Stage 3.
+    pub refined: usize,
+    /// Refined seeds that duplicated an earlier contact and were merged into it.
+    pub merged: usize,
+}
+
+impl StageStats {
+    /// Total of the three stage times (µs).
+    #[must_use]
+    pub fn total_us(&self) -> f64 {
+        self.broad_us + self.mesh_us + self.refine_us
+    }
+}
+
+/// The result of one pair query.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PairReport {
+    /// Separated, contact or penetration.
+    pub state: PairState,
+    /// Every contact (local minimum of distance inside the band), each once.
+    pub contacts: Vec<Contact>,
+    /// When penetrating: the centres of the intersecting mesh regions (world frame), as witness
+    /// points.
+    pub penetration_witnesses: Vec<DVec3>,
+    /// What ran and how long it took.
+    pub stats: StageStats,
+}
+
+impl PairReport {
+    /// Empties the report, keeping its allocations.
+    pub fn clear(&mut self) {
+        self.state = PairState::Separated;
+        self.contacts.clear();
+        self.penetration_witnesses.clear();
+        self.stats = StageStats::default();
+    }
+}
