@@ -1,0 +1,217 @@
+//! The Stage 2 boundary: the [`MeshPhase`] trait and the types it takes and returns.
+
+use geom_param::{ComponentId, DPose3, ObjectModel, Seed};
+use glam::DVec3;
+
+/// The distance band of the query (mm): contact when `delta1 <= d <= delta2`; `margin` is the
+/// proxy offset and must be `>= delta2`.
+///
+/// Paper section II: two objects are in contact when their minimum distance d lies in
+/// [δ1, δ2], in penetration below δ1 and separated above δ2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactBand {
+    /// Offset of the proxy meshes (mm), `>= delta2`.
+    pub margin: f64,
+    /// Lower end of the contact band (mm); may be negative.
+    pub delta1: f64,
+    /// Upper end of the contact band (mm), `>= delta1`.
+    pub delta2: f64,
+}
+
+impl ContactBand {
+    /// Checks that the band is usable: all values finite, `delta1 <= delta2 <= margin` and
+    /// `margin >= 0`.
+    ///
+    /// # Errors
+    /// [`MeshInputError::BadBand`] otherwise.
+    pub fn validate(&self) -> Result<(), MeshInputError> {
+        let ok = self.margin.is_finite()
+            && self.delta1.is_finite()
+            && self.delta2.is_finite()
+            && self.delta1 <= self.delta2
+            && self.delta2 <= self.margin
+            && self.margin >= 0.0;
+        if ok {
+            Ok(())
+        } else {
+            Err(MeshInputError::BadBand { band: *self })
+        }
+    }
+}
+
+/// One surface component of a prepared object, as handed to [`MeshPhase::query`].
+#[derive(Clone, Copy, Debug)]
+pub struct ComponentRef<'a, P> {
+    /// The object model.
+    pub object: &'a ObjectModel,
+    /// What [`MeshPhase::prepare`] returned for that object.
+    pub prepared: &'a P,
+    /// The component of `object`.
+    pub component: ComponentId,
+}
+
+/// Stage 2 of the paper (mesh phase): for one pair of surface components that Stage 1 found
+/// close, decide from their meshes whether they are separated, penetrating, or in contact, and in
+/// the last case hand Stage 3 one seed per contact.
+///
+/// # Frames and units
+/// Millimetres throughout. `pose_ab` is B's pose in A's frame (`pose_ab * p_b` is a point of B
+/// in A's frame). [`MeshOutput::penetration_centres`] are in A's frame; each [`geom_param::SeedPoint`]
+/// of a seed carries its `local_point` in its own object's frame.
+///
+/// # Verdicts
+/// Let e_A, e_B be the components' measured chordal errors ([`geom_param::ComponentMesh::chordal_error`]).
+/// - [`MeshVerdict::Separated`]: no point of the two meshes is within `delta2 + e_A + e_B` of
+///   the other (so no exact points are within `delta2`): for convex pairs, the hulls are
+///   farther apart than that; otherwise no triangle of the other mesh reaches the proxy, the
+///   mesh offset outwards by `margin + e_A + e_B`.
+/// - [`MeshVerdict::Penetrating`]: the two meshes intersect (exact predicates);
+///   [`MeshOutput::penetrating_pairs`] lists every intersecting (triangle of A, triangle of B)
+///   pair and [`MeshOutput::penetration_centres`] one witness point per connected region.
+///   Stage 2 reports penetration only from intersecting meshes: a mesh distance in
+///   (0, δ1) is passed on as seeds, and Stage 3 classifies the exact distance against δ1.
+/// - [`MeshVerdict::Seeds`]: the meshes do not intersect and are within the band (plus the
+///   chordal errors); [`MeshOutput::seeds`] has at least one seed. Each seed names on each side a
+///   point on the mesh, and the exact feature and parameters that point corresponds to
+///   (interpolated linearly from the triangle's corner parameters, which are unwrapped per
+///   triangle across the periodic seam, so u may lie outside [0, 2π)).
+/// - [`MeshVerdict::InvalidInput`]: the band or pose is unusable (non-finite, or
+///   `margin < delta2`) or a component id is out of range; `out` is left empty.
+///
+/// # Convex pairs
+/// Both components convex with hulls: GJK between the hulls (a support map that hill-climbs over
+/// the hull's vertex adjacency, warm-started from the scratch's last answer for this pair).
+/// Hulls farther apart than `delta2 + e_A + e_B`: separated. Hulls apart by less: one seed from
+/// the closest points p1, p2. GJK stops at about 4e-8 relative; Stage 3 makes the answer exact.
+/// A hull is not its surface: a GJK closest point may lie on a hull facet that is no part of
+/// the component (a "cap", e.g. over the opening of a bowl's outer wall); such a point is mapped
+/// to the mesh vertex of the nearest hull vertex of the simplex, and Stage 3 moves it. And when
+/// the hulls overlap, the surfaces need not intersect (the bowl's outer hull contains its
+/// cavity), so the pair falls back to the triangle path below. A pair whose GJK does not
+/// converge within its iteration cap falls back to the triangle path as well.
+///
+/// # Triangle path (a concave component, or the convex fallback)
+/// 1. Every intersecting triangle pair between the two meshes, by a simultaneous traversal of
+///    the components' triangle BVHs and an exact triangle-triangle test: any pair means
+///    penetration.
+/// 2. Otherwise every intersecting pair between the proxy of one component (the concave one; A
+///    when both or neither are) and the other's mesh. The colliding pairs are grouped into
+///    connected regions: pieces of intersection line joined end to end (mesh adjacency is not
+///    used, because one long triangle, e.g. of a cylinder's side, can reach into several
+///    contacts). For each region, p_ci is the centre of the area its intersection lines bound
+///    (area-weighted centroid of the loop, or the segments' centroid when the loop encloses no
+///    area). p_ci is projected onto both meshes (nearest point), giving one seed per region.
+///
+/// Proxies are built lazily (once per component and offset) and only on this path: a convex
+/// pair whose hulls are disjoint never builds or touches a proxy.
+///
+/// # Limitations
+/// As in the paper (section IV), a component completely inside the other solid without surface
+/// intersection is not reported as penetrating. Likewise a component lying entirely inside the
+/// proxy shell (between a mesh and its proxy) without crossing the proxy is not seen on the
+/// triangle path; choose `margin` below the size of the smallest feature that can come close.
+/// Where a concave radius of curvature is below the offset the proxy folds over itself; it is
+/// still a valid collision target.
+///
+/// # Panics
+/// Never on any input values; `out` is cleared first and every output is finite.
+pub trait MeshPhase {
+    /// Per-object preprocessing (triangle BVHs; lazily built proxy meshes behind OnceLock, keyed by margin).
+    type Prepared: Send + Sync;
+    /// Caller-owned scratch and warm-start state (e.g. last GJK support vertices per component pair).
+    type Scratch: Default + Send;
+
+    /// Builds the per-object data (done once per object, shared by all queries).
+    fn prepare(&self, object: &ObjectModel) -> Self::Prepared;
+
+    /// `pose_ab`: B's pose in A's frame. Clears and fills `out`; returns the verdict.
+    fn query(
+        &self,
+        a: ComponentRef<'_, Self::Prepared>,
+        b: ComponentRef<'_, Self::Prepared>,
+        pose_ab: &DPose3,
+        band: &ContactBand,
+        scratch: &mut Self::Scratch,
+        out: &mut MeshOutput,
+    ) -> MeshVerdict;
+}
+
+/// The outcome of one [`MeshPhase::query`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MeshVerdict {
+    /// Farther apart than the band plus the chordal errors.
+    Separated,
+    /// The meshes intersect; see [`MeshOutput::penetrating_pairs`].
+    Penetrating,
+    /// In contact range; see [`MeshOutput::seeds`].
+    Seeds,
+    /// The inputs cannot be used; nothing was computed.
+    InvalidInput(MeshInputError),
+}
+
+/// Inputs that a query refuses.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum MeshInputError {
+    /// A band value is not finite, or `delta1 <= delta2 <= margin` with `margin >= 0` fails.
+    #[error(
+        "unusable contact band {band:?} (needs finite delta1 <= delta2 <= margin, margin >= 0)"
+    )]
+    BadBand {
+        /// The band given.
+        band: ContactBand,
+    },
+    /// The pose has a non-finite or non-unit rotation or a non-finite translation.
+    #[error("the pose of B in A's frame is not a finite rigid motion")]
+    BadPose,
+    /// A component id is not one of its object's components.
+    #[error("component {component:?} is not in its object (which has {count} components)")]
+    NoSuchComponent {
+        /// The id given.
+        component: ComponentId,
+        /// How many components the object has.
+        count: usize,
+    },
+    /// The prepared data was built for an object with another number of components.
+    #[error("the prepared data does not belong to this object")]
+    PreparedMismatch,
+}
+
+/// Counters for statistics of one query.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MeshStats {
+    /// Exact triangle-triangle tests run (mesh-mesh and proxy-mesh).
+    pub triangle_pairs_tested: u32,
+    /// Connected regions found (penetration or contact).
+    pub regions: u32,
+    /// Whether this query built a proxy mesh.
+    pub proxy_built: bool,
+    /// Support-map evaluations made by GJK (0 when GJK did not run).
+    pub gjk_iterations: u32,
+    /// Whether the convex pair fell back to the triangle path (hulls overlapping, or GJK not
+    /// converged).
+    pub convex_fallback: bool,
+}
+
+/// What a query produces besides its verdict. Reuse one across queries: it is cleared, not
+/// reallocated.
+#[derive(Clone, Debug, Default)]
+pub struct MeshOutput {
+    /// Seeds for Stage 3 (each SeedPoint in its own object's frame; see geom_param::Seed).
+    pub seeds: Vec<Seed>,
+    /// Intersecting (triangle of A, triangle of B) mesh pairs, when penetrating.
+    pub penetrating_pairs: Vec<(u32, u32)>,
+    /// Centre of each connected penetration region, in A's frame (witness points).
+    pub penetration_centres: Vec<DVec3>,
+    /// Counters for statistics: triangle pairs tested, regions found, whether a proxy was built, GJK iterations.
+    pub stats: MeshStats,
+}
+
+impl MeshOutput {
+    /// Empties every list and zeroes the counters, keeping the allocations.
+    pub fn clear(&mut self) {
+        self.seeds.clear();
+        self.penetrating_pairs.clear();
+        self.penetration_centres.clear();
+        self.stats = MeshStats::default();
+    }
+}

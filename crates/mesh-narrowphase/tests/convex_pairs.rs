@@ -1,0 +1,228 @@
+//! Convex pairs: GJK with the hill-climbing support map against parry's own `ConvexPolyhedron`
+//! answer, seeds against closed forms, caps, and proxies left untouched.
+
+mod common;
+
+use common::*;
+use geom_param::{ComponentKind, ConvexHull, DQuat, DVec3};
+use mesh_narrowphase::convex_pair::{GjkScratch, HullProximity, WarmStart, hull_proximity};
+use mesh_narrowphase::hill_climb_support::HillClimbSupport;
+use mesh_narrowphase::{ContactBand, MeshScratch, MeshVerdict};
+use parry3d_f64::query;
+use parry3d_f64::shape::{ConvexPolyhedron, SupportMap};
+
+fn hulls(names: &[&str], tolerance: f64) -> Vec<(String, ConvexHull)> {
+    let mut out = Vec::new();
+    for name in names {
+        let object = paper_object(name, tolerance);
+        for (i, hull) in object.hulls.iter().enumerate() {
+            if let Some(h) = hull {
+                out.push((format!("{name}#{i}"), h.clone()));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn hill_climbing_support_matches_brute_force_scan() {
+    let mut rng = Rng(7);
+    for (name, hull) in hulls(&["goblet", "vase", "pencil"], 0.05) {
+        let support = HillClimbSupport::new(&hull, 0);
+        for _ in 0..200 {
+            let dir = rng.rotation() * DVec3::X;
+            let got = support.local_support_point(dir).dot(dir);
+            let best = hull
+                .points
+                .iter()
+                .map(|p| p.dot(dir))
+                .fold(f64::MIN, f64::max);
+            assert!(
+                got >= best - 1e-12 * best.abs().max(1.0),
+                "{name}: {got} < {best}"
+            );
+        }
+    }
+}
+
+#[test]
+fn gjk_with_hill_climbing_agrees_with_parry_convex_polyhedron() {
+    let all = hulls(&["paperweight", "goblet", "vase", "pencil", "jar"], 0.05);
+    let mut rng = Rng(42);
+    let mut scratch = GjkScratch::default();
+    let mut checked = [0usize; 3];
+    for k in 0..400 {
+        let (na, ha) = &all[k % all.len()];
+        let (nb, hb) = &all[(k * 7 + 3) % all.len()];
+        let pa = ConvexPolyhedron::from_convex_hull(&ha.points).expect("hull");
+        let pb = ConvexPolyhedron::from_convex_hull(&hb.points).expect("hull");
+        let pose = pose(
+            rng.rotation(),
+            rng.rotation() * DVec3::new(rng.range(0.0, 130.0), 0.0, 0.0),
+        );
+        let truth = query::distance(&pose_identity(), &pa, &pose, &pb)
+            .expect("supported")
+            .distance;
+        let max_distance = 20.0;
+        let size = 200.0;
+        let mut warm = WarmStart::default();
+        let (got, _) = hull_proximity(
+            ha,
+            hb,
+            &pose,
+            max_distance,
+            1e-7 * size,
+            &mut warm,
+            &mut scratch,
+        );
+        match got {
+            HullProximity::Close { p1, p2 } => {
+                let d = p1.distance(p2);
+                assert!(
+                    (d - truth).abs() <= 1e-6 * size,
+                    "{na} vs {nb}: {d} vs parry {truth}"
+                );
+                checked[0] += 1;
+            }
+            HullProximity::Overlapping => {
+                assert!(
+                    truth <= 1e-6 * size,
+                    "{na} vs {nb}: overlap but parry says {truth}"
+                );
+                checked[1] += 1;
+            }
+            HullProximity::Separated => {
+                assert!(
+                    truth > max_distance,
+                    "{na} vs {nb}: separated but parry says {truth}"
+                );
+                checked[2] += 1;
+            }
+            HullProximity::NotConverged => panic!("{na} vs {nb}: not converged"),
+        }
+        // Warm-started from its own answer, the same query gives the same distance.
+        let (again, _) = hull_proximity(
+            ha,
+            hb,
+            &pose,
+            max_distance,
+            1e-7 * size,
+            &mut warm,
+            &mut scratch,
+        );
+        if let (HullProximity::Close { p1, p2 }, HullProximity::Close { p1: q1, p2: q2 }) =
+            (got, again)
+        {
+            assert!((p1.distance(p2) - q1.distance(q2)).abs() <= 1e-6 * size);
+        } else {
+            assert_eq!(std::mem::discriminant(&got), std::mem::discriminant(&again));
+        }
+    }
+    println!("close / overlapping / separated: {checked:?}");
+    assert!(
+        checked.iter().all(|&n| n >= 20),
+        "too few cases of some kind: {checked:?}"
+    );
+}
+
+fn pose_identity() -> geom_param::DPose3 {
+    pose(DQuat::IDENTITY, DVec3::ZERO)
+}
+
+#[test]
+fn two_spheres_give_one_seed_at_the_closed_form_points_and_no_proxy() {
+    let tol = 0.02;
+    let a = Prepared::new(sphere(10.0, tol));
+    let b = Prepared::new(sphere(6.0, tol));
+    let (ca, cb) = (a.object.components[0].id, b.object.components[0].id);
+    let band = ContactBand {
+        margin: 0.5,
+        delta1: -0.05,
+        delta2: 0.3,
+    };
+    let mut scratch = MeshScratch::default();
+    let mut rng = Rng(3);
+    for _ in 0..20 {
+        let dir = rng.rotation() * DVec3::Z;
+        let gap = rng.range(0.0, 0.25);
+        let pose_ab = pose(rng.rotation(), dir * (16.0 + gap));
+        let (verdict, out) = query(&a, ca, &b, cb, &pose_ab, &band, &mut scratch);
+        assert_eq!(verdict, MeshVerdict::Seeds);
+        assert_eq!(out.seeds.len(), 1);
+        assert!(!out.stats.proxy_built && !out.stats.convex_fallback);
+        let seed = out.seeds[0];
+        // Mesh points within the chordal error of the surface, and no further than the facet
+        // size from the exact closest points: the facets near the contact are within
+        // sqrt(2 r e) of them for a sphere of radius r meshed to error e.
+        let on_a = dir * 10.0;
+        let on_b = pose_ab.inverse() * (dir * (10.0 + gap));
+        assert!(
+            seed.a.local_point.distance(on_a) <= (2.0 * 10.0 * tol).sqrt(),
+            "{seed:?}"
+        );
+        assert!(
+            seed.b.local_point.distance(on_b) <= (2.0 * 6.0 * tol).sqrt(),
+            "{seed:?}"
+        );
+        let d = seed.a.local_point.distance(pose_ab * seed.b.local_point);
+        assert!(
+            (d - gap).abs() <= 2.0 * tol,
+            "mesh distance {d} vs gap {gap}"
+        );
+        // Far apart: separated.
+        let far = pose(pose_ab.rotation, dir * (16.0 + 0.3 + 2.0 * tol + 0.01));
+        let (verdict, _) = query(&a, ca, &b, cb, &far, &band, &mut scratch);
+        assert_eq!(verdict, MeshVerdict::Separated);
+    }
+    assert_eq!(
+        a.prepared.components[0].proxies.len(),
+        0,
+        "a convex pair built a proxy"
+    );
+    assert_eq!(
+        b.prepared.components[0].proxies.len(),
+        0,
+        "a convex pair built a proxy"
+    );
+}
+
+#[test]
+fn closest_point_on_a_hull_cap_maps_to_a_mesh_vertex() {
+    // The socket's outer (convex) component is the outer sphere and the flat rim annulus at
+    // z = 40; its hull is closed by a cap over the opening. A ball hovering over the centre of the
+    // opening is closest to the cap's centre (0, 0, 40), which is no point of the surface: the
+    // seed must be a vertex of the rim (inner rim circle r = 30, z = 40), located exactly.
+    let socket = Prepared::new(socket(30.0, 35.0, 40.0, 0.05));
+    let ball = Prepared::new(sphere(10.0, 0.05));
+    let outer = components_of(&socket.object, ComponentKind::Convex)[0];
+    let band = ContactBand {
+        margin: 0.5,
+        delta1: -0.05,
+        delta2: 0.3,
+    };
+    let pose = pose(DQuat::IDENTITY, DVec3::new(0.0, 0.0, 50.2));
+    let (verdict, out) = query(
+        &socket,
+        outer,
+        &ball,
+        ball.object.components[0].id,
+        &pose,
+        &band,
+        &mut MeshScratch::default(),
+    );
+    assert_eq!(verdict, MeshVerdict::Seeds);
+    let seed = out.seeds[0];
+    let p = seed.a.local_point;
+    assert!((p.z - 40.0).abs() <= 1e-9, "{p}");
+    let r = p.truncate().length();
+    assert!(
+        (r - 30.0).abs() <= 1e-9 || (r - 35.0).abs() <= 1e-9,
+        "not on a rim circle: {p}"
+    );
+    let exact = socket.object.solid.point_at(&seed.a.location);
+    assert!(
+        exact.distance(p) <= 1e-9,
+        "{:?} at {exact}, seed {p}",
+        seed.a.location
+    );
+}
