@@ -9,7 +9,9 @@
 //! run come a single-contact scene (after the touch), a separated scene (the touch moved back by
 //! 5 mm) and, for the pencil and the bowl, a penetrating scene.
 
-use contact_pipeline::{ContactOptions, ContactPipeline, PairReport, PairState, PreparedObject, QueryScratch};
+use contact_pipeline::{
+    ContactOptions, ContactPipeline, PairReport, PairState, PreparedObject, QueryScratch,
+};
 use geom_param::{DPose3, DQuat, DVec3, ObjectDescription};
 use serde_json::{Value, json};
 
@@ -59,13 +61,14 @@ fn specs() -> Vec<SettleSpec> {
             tilt_axis: DVec3::NEG_Y,
             max_tilt: 1.2,
         },
-        // The pencil lowered into the bowl, then leaning onto the rim.
+        // The pencil lowered into the bowl tip first, then leaning onto the rim (Fig. 3).
         SettleSpec {
             pair: "pencil-bowl",
             a: "bowl",
             b: "pencil",
-            rotation: DQuat::from_rotation_y(0.9),
-            start: DVec3::new(-10.0, 0.0, 30.0),
+            // Tip down at 45°, lowered onto the bowl's inner bottom, then the body onto the rim.
+            rotation: DQuat::from_rotation_y(0.75 * std::f64::consts::PI),
+            start: DVec3::new(-115.5, 0.0, 155.5),
             approach: DVec3::NEG_Z,
             tilt_axis: DVec3::NEG_Y,
             max_tilt: 1.0,
@@ -78,8 +81,8 @@ fn specs() -> Vec<SettleSpec> {
             rotation: DQuat::IDENTITY,
             start: DVec3::new(100.0, 0.0, 0.0),
             approach: DVec3::NEG_X,
-            tilt_axis: DVec3::Y,
-            max_tilt: 0.8,
+            tilt_axis: DVec3::NEG_Y,
+            max_tilt: 1.5,
         },
     ]
 }
@@ -97,18 +100,28 @@ fn min_distance(report: &PairReport) -> f64 {
     match report.state {
         PairState::Penetration => f64::NEG_INFINITY,
         PairState::Separated => f64::INFINITY,
-        PairState::Contact => report.contacts.iter().map(|c| c.distance).fold(f64::INFINITY, f64::min),
+        PairState::Contact => report
+            .contacts
+            .iter()
+            .map(|c| c.distance)
+            .fold(f64::INFINITY, f64::min),
     }
 }
 
 fn translated(pose: &DPose3, by: DVec3) -> DPose3 {
-    DPose3 { rotation: pose.rotation, translation: pose.translation + by }
+    DPose3 {
+        rotation: pose.rotation,
+        translation: pose.translation + by,
+    }
 }
 
 /// `pose` turned by `angle` about the world axis through `pivot`.
 fn turned(pose: &DPose3, pivot: DVec3, axis: DVec3, angle: f64) -> DPose3 {
     let r = DQuat::from_axis_angle(axis, angle);
-    DPose3 { rotation: (r * pose.rotation).normalize(), translation: pivot + r * (pose.translation - pivot) }
+    DPose3 {
+        rotation: (r * pose.rotation).normalize(),
+        translation: pivot + r * (pose.translation - pivot),
+    }
 }
 
 /// Finds x in [lo, hi] with f(x) = target, given f(lo) > target >= f(hi) (f need not be
@@ -128,7 +141,13 @@ fn bisect(mut lo: f64, mut hi: f64, mut f: impl FnMut(f64) -> f64, target: f64) 
 impl Settler {
     fn query(&mut self, pose_b: &DPose3) -> PairReport {
         self.pipeline
-            .query(&self.a, &DPose3::IDENTITY, &self.b, pose_b, &mut self.scratch)
+            .query(
+                &self.a,
+                &DPose3::IDENTITY,
+                &self.b,
+                pose_b,
+                &mut self.scratch,
+            )
             .expect("settle poses are built from unit quaternions")
     }
 
@@ -142,7 +161,12 @@ impl Settler {
         for _ in 0..10_000 {
             let next = t + step;
             if min_distance(&self.query(&translated(start, approach * next))) <= gap {
-                let found = bisect(t, next, |x| min_distance(&self.query(&translated(start, approach * x))), gap);
+                let found = bisect(
+                    t,
+                    next,
+                    |x| min_distance(&self.query(&translated(start, approach * x))),
+                    gap,
+                );
                 return Ok(translated(start, approach * found));
             }
             t = next;
@@ -150,19 +174,41 @@ impl Settler {
         Err("B never reaches A".into())
     }
 
+    /// `pose` moved along `away` in 5 mm steps until Stage 1 reports no component pair, then
+    /// 5 mm more: a separated scene that stops after Stage 1.
+    fn clear_of_broad_phase(&mut self, pose: &DPose3, away: DVec3) -> DPose3 {
+        let mut moved = 5.0;
+        while moved < 1000.0
+            && self
+                .query(&translated(pose, away * moved))
+                .stats
+                .component_pairs
+                > 0
+        {
+            moved += 5.0;
+        }
+        translated(pose, away * (moved + 5.0))
+    }
+
     /// The first contact (nearest `pivot`) and the smallest distance among the others
     /// (-inf when penetrating, +inf when there is none).
-    fn split_contacts(&mut self, pose: &DPose3, pivot: DVec3) -> (Option<(f64, DVec3, DVec3)>, f64) {
+    fn split_contacts(
+        &mut self,
+        pose: &DPose3,
+        pivot: DVec3,
+    ) -> (Option<(f64, DVec3, DVec3)>, f64) {
         let report = self.query(pose);
         if report.state == PairState::Penetration {
             return (None, f64::NEG_INFINITY);
         }
-        let nearest = report
-            .contacts
-            .iter()
-            .enumerate()
-            .min_by(|(_, x), (_, y)| x.point_b.distance(pivot).total_cmp(&y.point_b.distance(pivot)));
-        let Some((k, first)) = nearest else { return (None, f64::INFINITY) };
+        let nearest = report.contacts.iter().enumerate().min_by(|(_, x), (_, y)| {
+            x.point_b
+                .distance(pivot)
+                .total_cmp(&y.point_b.distance(pivot))
+        });
+        let Some((k, first)) = nearest else {
+            return (None, f64::INFINITY);
+        };
         let others = report
             .contacts
             .iter()
@@ -181,7 +227,9 @@ impl Settler {
         for _ in 0..4 {
             let (first, rest) = self.split_contacts(&pose, pivot);
             others = rest;
-            let Some((distance, point_b, normal)) = first else { break };
+            let Some((distance, point_b, normal)) = first else {
+                break;
+            };
             pivot = point_b;
             if (distance - gap).abs() < 1e-12 {
                 break;
@@ -194,24 +242,33 @@ impl Settler {
     /// Turns B about its first contact until a second contact reaches `second_gap`.
     fn tilt(&mut self, touched: DPose3, spec: &SettleSpec) -> Result<DPose3, String> {
         let report = self.query(&touched);
-        let first = report.contacts.first().ok_or("no first contact after touching")?;
+        let first = report
+            .contacts
+            .first()
+            .ok_or("no first contact after touching")?;
         let (mut pose, mut pivot) = (touched, first.point_b);
         let step = 0.01;
         let mut angle = 0.0;
         while angle < spec.max_tilt {
-            let (next, next_pivot, others) = self.resettle(turned(&pose, pivot, spec.tilt_axis, step), pivot, FIRST_GAP);
+            let (next, next_pivot, others) =
+                self.resettle(turned(&pose, pivot, spec.tilt_axis, step), pivot, FIRST_GAP);
             angle += step;
             if others <= SECOND_GAP {
                 // Bisect the last step on the second contact's distance.
                 let (base, base_pivot, axis) = (pose, pivot, spec.tilt_axis);
-                let mut at = |x: f64| self.resettle(turned(&base, base_pivot, axis, x), base_pivot, FIRST_GAP);
+                let mut at = |x: f64| {
+                    self.resettle(turned(&base, base_pivot, axis, x), base_pivot, FIRST_GAP)
+                };
                 let found = bisect(0.0, step, |x| at(x).2, SECOND_GAP);
                 return Ok(at(found).0);
             }
             pose = next;
             pivot = next_pivot;
         }
-        Err(format!("{}: no second contact within {} rad", spec.pair, spec.max_tilt))
+        Err(format!(
+            "{}: no second contact within {} rad",
+            spec.pair, spec.max_tilt
+        ))
     }
 }
 
@@ -247,23 +304,54 @@ fn scene_json(spec: &SettleSpec, pose_b: &DPose3, what: &str, options: &ContactO
 /// A message when a pair cannot be settled.
 pub fn generate_scenes(objects: &[ObjectDescription]) -> Result<Vec<(String, String)>, String> {
     let options = ContactOptions::default();
-    let find = |name: &str| objects.iter().find(|o| o.name == name).ok_or(format!("no object {name}"));
+    let find = |name: &str| {
+        objects
+            .iter()
+            .find(|o| o.name == name)
+            .ok_or(format!("no object {name}"))
+    };
     let mut files = Vec::new();
     for spec in specs() {
         let pipeline = ContactPipeline::new(options).map_err(|e| e.to_string())?;
-        let a = pipeline.prepare_description(find(spec.a)?).map_err(|e| e.to_string())?;
-        let b = pipeline.prepare_description(find(spec.b)?).map_err(|e| e.to_string())?;
-        let mut settler = Settler { pipeline, a, b, scratch: QueryScratch::default() };
-        let start = DPose3 { rotation: spec.rotation, translation: spec.start };
-        let touched = settler.touch(&start, spec.approach, FIRST_GAP).map_err(|e| format!("{}: {e}", spec.pair))?;
+        let a = pipeline
+            .prepare_description(find(spec.a)?)
+            .map_err(|e| e.to_string())?;
+        let b = pipeline
+            .prepare_description(find(spec.b)?)
+            .map_err(|e| e.to_string())?;
+        let mut settler = Settler {
+            pipeline,
+            a,
+            b,
+            scratch: QueryScratch::default(),
+        };
+        let start = DPose3 {
+            rotation: spec.rotation,
+            translation: spec.start,
+        };
+        let touched = settler
+            .touch(&start, spec.approach, FIRST_GAP)
+            .map_err(|e| format!("{}: {e}", spec.pair))?;
         let two = settler.tilt(touched, &spec)?;
-        files.push((format!("{}-two-contacts.json", spec.pair), scene_json(&spec, &two, "two contacts", &options)));
-        files.push((format!("{}-one-contact.json", spec.pair), scene_json(&spec, &touched, "one contact", &options)));
-        let apart = translated(&touched, -spec.approach * 5.0);
-        files.push((format!("{}-separated.json", spec.pair), scene_json(&spec, &apart, "separated", &options)));
+        files.push((
+            format!("{}-two-contacts.json", spec.pair),
+            scene_json(&spec, &two, "two contacts", &options),
+        ));
+        files.push((
+            format!("{}-one-contact.json", spec.pair),
+            scene_json(&spec, &touched, "one contact", &options),
+        ));
+        let apart = settler.clear_of_broad_phase(&touched, -spec.approach);
+        files.push((
+            format!("{}-separated.json", spec.pair),
+            scene_json(&spec, &apart, "separated", &options),
+        ));
         if spec.pair == "pencil-bowl" {
             let into = translated(&touched, spec.approach * 0.5);
-            files.push((format!("{}-penetrating.json", spec.pair), scene_json(&spec, &into, "penetrating", &options)));
+            files.push((
+                format!("{}-penetrating.json", spec.pair),
+                scene_json(&spec, &into, "penetrating", &options),
+            ));
         }
     }
     Ok(files)

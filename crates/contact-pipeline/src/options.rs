@@ -31,7 +31,13 @@ pub struct ContactOptions {
 
 impl Default for ContactOptions {
     fn default() -> Self {
-        Self { margin: 1.0, delta1: -0.001, delta2: 0.1, chordal_tolerance: 0.05, depth: QueryDepth::Contacts }
+        Self {
+            margin: 1.0,
+            delta1: -0.001,
+            delta2: 0.1,
+            chordal_tolerance: 0.05,
+            depth: QueryDepth::Contacts,
+        }
     }
 }
 
@@ -55,7 +61,9 @@ pub enum OptionsError {
         value: f64,
     },
     /// The band is empty or not covered by the margin: need delta1 <= delta2 <= margin.
-    #[error("need delta1 <= delta2 <= margin, got delta1 = {delta1}, delta2 = {delta2}, margin = {margin}")]
+    #[error(
+        "need delta1 <= delta2 <= margin, got delta1 = {delta1}, delta2 = {delta2}, margin = {margin}"
+    )]
     BadBand {
         /// delta1 (mm).
         delta1: f64,
@@ -82,13 +90,20 @@ impl ContactOptions {
                 return Err(OptionsError::NotFinite { name, value });
             }
         }
-        for (name, value) in [("margin", self.margin), ("chordal_tolerance", self.chordal_tolerance)] {
+        for (name, value) in [
+            ("margin", self.margin),
+            ("chordal_tolerance", self.chordal_tolerance),
+        ] {
             if value <= 0.0 {
                 return Err(OptionsError::NotPositive { name, value });
             }
         }
         if !(self.delta1 <= self.delta2 && self.delta2 <= self.margin) {
-            return Err(OptionsError::BadBand { delta1: self.delta1, delta2: self.delta2, margin: self.margin });
+            return Err(OptionsError::BadBand {
+                delta1: self.delta1,
+                delta2: self.delta2,
+                margin: self.margin,
+            });
         }
         Ok(())
     }

@@ -5,8 +5,12 @@ use crate::options::{ContactOptions, OptionsError, QueryDepth};
 use crate::report::{Contact, PairReport, PairState};
 use bvh_hybrid::{BroadPhase, HybridBvh};
 use exact_refine::{NewtonRefiner, RefinedContact, Refiner};
-use geom_param::{ComponentId, DPose3, LoadError, MeshOptions, ObjectDescription, ObjectModel, Seed};
-use mesh_narrowphase::{ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshVerdict};
+use geom_param::{
+    ComponentId, DPose3, LoadError, MeshOptions, ObjectDescription, ObjectModel, Seed,
+};
+use mesh_narrowphase::{
+    ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshVerdict,
+};
 use std::time::Instant;
 
 /// An object with all its preprocessing: the exact model and each stage's prepared data. Built
@@ -22,7 +26,11 @@ pub struct PreparedObject<B: BroadPhase = HybridBvh, M: MeshPhase = MeshNarrowph
 
 /// Caller-owned working memory of queries: pass the same one to every query of a thread so
 /// that steady-state queries allocate nothing.
-pub struct QueryScratch<B: BroadPhase = HybridBvh, M: MeshPhase = MeshNarrowphase, R: Refiner = NewtonRefiner> {
+pub struct QueryScratch<
+    B: BroadPhase = HybridBvh,
+    M: MeshPhase = MeshNarrowphase,
+    R: Refiner = NewtonRefiner,
+> {
     broad: B::Scratch,
     mesh: M::Scratch,
     refine: R::Scratch,
@@ -47,7 +55,11 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> Default for QueryScratch<B, M, R> 
 /// Contact detection between pairs of prepared objects (paper section II).
 ///
 /// Swap a stage by naming its type: `ContactPipeline::<MyBroadPhase>::with_stages(..)`.
-pub struct ContactPipeline<B: BroadPhase = HybridBvh, M: MeshPhase = MeshNarrowphase, R: Refiner = NewtonRefiner> {
+pub struct ContactPipeline<
+    B: BroadPhase = HybridBvh,
+    M: MeshPhase = MeshNarrowphase,
+    R: Refiner = NewtonRefiner,
+> {
     /// Stage 1.
     pub broad: B,
     /// Stage 2.
@@ -63,7 +75,12 @@ impl ContactPipeline {
     /// # Errors
     /// [`OptionsError`] when the options cannot work together.
     pub fn new(options: ContactOptions) -> Result<Self, OptionsError> {
-        Self::with_stages(HybridBvh::default(), MeshNarrowphase::default(), NewtonRefiner::default(), options)
+        Self::with_stages(
+            HybridBvh::default(),
+            MeshNarrowphase::default(),
+            NewtonRefiner::default(),
+            options,
+        )
     }
 }
 
@@ -72,9 +89,19 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     ///
     /// # Errors
     /// [`OptionsError`] when the options cannot work together.
-    pub fn with_stages(broad: B, mesh: M, refiner: R, options: ContactOptions) -> Result<Self, OptionsError> {
+    pub fn with_stages(
+        broad: B,
+        mesh: M,
+        refiner: R,
+        options: ContactOptions,
+    ) -> Result<Self, OptionsError> {
         options.validate()?;
-        Ok(Self { broad, mesh, refiner, options })
+        Ok(Self {
+            broad,
+            mesh,
+            refiner,
+            options,
+        })
     }
 
     /// The options in force.
@@ -96,8 +123,13 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     ///
     /// # Errors
     /// [`LoadError`] for an invalid profile or unusable tolerance.
-    pub fn prepare_description(&self, description: &ObjectDescription) -> Result<PreparedObject<B, M>, LoadError> {
-        let model = description.build(&MeshOptions { chordal_tolerance: self.options.chordal_tolerance })?;
+    pub fn prepare_description(
+        &self,
+        description: &ObjectDescription,
+    ) -> Result<PreparedObject<B, M>, LoadError> {
+        let model = description.build(&MeshOptions {
+            chordal_tolerance: self.options.chordal_tolerance,
+        })?;
         Ok(self.prepare(model))
     }
 
@@ -141,7 +173,13 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
 
         // Stage 1.
         let start = Instant::now();
-        self.broad.overlapping_components(&a.tree, &b.tree, &pose_ab, &mut scratch.broad, &mut scratch.pairs);
+        self.broad.overlapping_components(
+            &a.tree,
+            &b.tree,
+            &pose_ab,
+            &mut scratch.broad,
+            &mut scratch.pairs,
+        );
         report.stats.broad_ran = true;
         report.stats.broad_us = micros(start);
         report.stats.component_pairs = scratch.pairs.len();
@@ -151,13 +189,26 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
 
         // Stage 2.
         let start = Instant::now();
-        let band = ContactBand { margin: options.margin, delta1: options.delta1, delta2: options.delta2 };
+        let band = ContactBand {
+            margin: options.margin,
+            delta1: options.delta1,
+            delta2: options.delta2,
+        };
         scratch.seeds.clear();
         let mut penetrating = false;
+        let mut mesh_overlaps = 0;
         for &(ca, cb) in &scratch.pairs {
             let verdict = self.mesh.query(
-                ComponentRef { object: &a.model, prepared: &a.mesh, component: ca },
-                ComponentRef { object: &b.model, prepared: &b.mesh, component: cb },
+                ComponentRef {
+                    object: &a.model,
+                    prepared: &a.mesh,
+                    component: ca,
+                },
+                ComponentRef {
+                    object: &b.model,
+                    prepared: &b.mesh,
+                    component: cb,
+                },
                 &pose_ab,
                 &band,
                 &mut scratch.mesh,
@@ -166,10 +217,21 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             match verdict {
                 MeshVerdict::Separated => {}
                 MeshVerdict::Penetrating => {
-                    penetrating = true;
-                    report
-                        .penetration_witnesses
-                        .extend(scratch.mesh_out.penetration_centres.iter().map(|p| *pose_a * *p));
+                    // Intersecting meshes prove penetration only deeper than the chordal errors
+                    // (concave meshes lie outside their surfaces): with seeds, Stage 3 decides.
+                    report.penetration_witnesses.extend(
+                        scratch
+                            .mesh_out
+                            .penetration_centres
+                            .iter()
+                            .map(|p| *pose_a * *p),
+                    );
+                    if scratch.mesh_out.seeds.is_empty() {
+                        penetrating = true;
+                    } else {
+                        mesh_overlaps += 1;
+                        scratch.seeds.extend_from_slice(&scratch.mesh_out.seeds);
+                    }
                 }
                 MeshVerdict::Seeds => scratch.seeds.extend_from_slice(&scratch.mesh_out.seeds),
                 MeshVerdict::InvalidInput(e) => return Err(QueryError::MeshPhase(e.to_string())),
@@ -190,11 +252,19 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let start = Instant::now();
         report.stats.refine_ran = true;
         for seed in &scratch.seeds {
-            let refined = self.refiner.refine(&a.model.solid, &b.model.solid, &pose_ab, seed, &mut scratch.refine);
+            let refined = self.refiner.refine(
+                &a.model.solid,
+                &b.model.solid,
+                &pose_ab,
+                seed,
+                &mut scratch.refine,
+            );
             report.stats.refined += 1;
             if refined.distance < options.delta1 {
                 report.state = PairState::Penetration;
-                report.penetration_witnesses.push(*pose_a * (0.5 * (refined.point_a + refined.point_b)));
+                report
+                    .penetration_witnesses
+                    .push(*pose_a * (0.5 * (refined.point_a + refined.point_b)));
                 if options.depth == QueryDepth::StateOnly {
                     break;
                 }
@@ -203,7 +273,10 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             if refined.distance > options.delta2 || !refined.diagnostics.is_local_minimum {
                 continue;
             }
-            let tolerance = merge_tolerance(&refined, a.model.profile.scale().max(b.model.profile.scale()));
+            let tolerance = merge_tolerance(
+                &refined,
+                a.model.profile.scale().max(b.model.profile.scale()),
+            );
             if insert_or_merge(&mut report.contacts, to_world(&refined, pose_a), tolerance) {
                 report.stats.merged += 1;
             }
@@ -212,9 +285,14 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             }
         }
         report.stats.refine_us = micros(start);
-        if report.state != PairState::Penetration && !report.contacts.is_empty() {
-            report.state = PairState::Contact;
+        if report.state != PairState::Penetration {
+            // The mesh overlaps were within the chordal errors: no penetration after all.
+            report.penetration_witnesses.clear();
+            if !report.contacts.is_empty() {
+                report.state = PairState::Contact;
+            }
         }
+        report.stats.mesh_overlaps = mesh_overlaps;
         Ok(())
     }
 }
@@ -238,11 +316,17 @@ pub enum QueryError {
 fn check_pose(pose: &DPose3, object: &'static str) -> Result<(), QueryError> {
     let q = pose.rotation;
     if !(q.is_finite() && pose.translation.is_finite()) {
-        return Err(QueryError::BadPose { object, reason: "a component is not a finite number".into() });
+        return Err(QueryError::BadPose {
+            object,
+            reason: "a component is not a finite number".into(),
+        });
     }
     let norm = q.length();
     if (norm - 1.0).abs() > 1e-6 {
-        return Err(QueryError::BadPose { object, reason: format!("rotation quaternion has norm {norm}") });
+        return Err(QueryError::BadPose {
+            object,
+            reason: format!("rotation quaternion has norm {norm}"),
+        });
     }
     Ok(())
 }

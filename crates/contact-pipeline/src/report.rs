@@ -58,6 +58,8 @@ pub struct StageStats {
     pub seeds: usize,
     /// Seeds refined by Stage 3.
     pub refined: usize,
+    /// Component pairs whose meshes intersected but whose penetration Stage 3 had to confirm.
+    pub mesh_overlaps: usize,
     /// Refined seeds that duplicated an earlier contact and were merged into it.
     pub merged: usize,
 }

@@ -2,10 +2,19 @@
 
 /// (name, object file text) of every built-in object.
 pub const BUILTIN_OBJECTS: [(&str, &str); 6] = [
-    ("paperweight", include_str!("../../../fixtures/objects/paperweight.json")),
-    ("goblet", include_str!("../../../fixtures/objects/goblet.json")),
+    (
+        "paperweight",
+        include_str!("../../../fixtures/objects/paperweight.json"),
+    ),
+    (
+        "goblet",
+        include_str!("../../../fixtures/objects/goblet.json"),
+    ),
     ("bowl", include_str!("../../../fixtures/objects/bowl.json")),
-    ("pencil", include_str!("../../../fixtures/objects/pencil.json")),
+    (
+        "pencil",
+        include_str!("../../../fixtures/objects/pencil.json"),
+    ),
     ("jar", include_str!("../../../fixtures/objects/jar.json")),
     ("vase", include_str!("../../../fixtures/objects/vase.json")),
 ];
@@ -13,5 +22,8 @@ pub const BUILTIN_OBJECTS: [(&str, &str); 6] = [
 /// The object file text of a built-in object.
 #[must_use]
 pub fn builtin_object(name: &str) -> Option<&'static str> {
-    BUILTIN_OBJECTS.iter().find(|(n, _)| *n == name).map(|(_, text)| *text)
+    BUILTIN_OBJECTS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, text)| *text)
 }

@@ -2,6 +2,7 @@
 //! runs behind `contacts query`, `contacts bench` and `contacts demo`.
 
 pub mod builtin_objects;
+pub mod demo;
 pub mod output;
 pub mod run;
 pub mod scene;

@@ -4,6 +4,7 @@
 
 use clap::{Parser, Subcommand};
 use contacts::run::prepare_scene;
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -46,15 +47,20 @@ fn main() -> ExitCode {
         }
     };
     let result = match cli.command {
-        Command::Query { scene } => prepare_scene(&scene).map(|s| s.query_json().to_string()),
-        Command::Bench { scene, iterations } => {
-            prepare_scene(&scene).map(|s| s.bench_json(iterations.max(1)).to_string())
-        }
+        Command::Query { scene } => prepare_scene(&scene)
+            .map_err(|e| e.to_string())
+            .and_then(|s| s.query_json().map_err(|e| e.to_string()))
+            .map(|v| v.to_string()),
+        Command::Bench { scene, iterations } => prepare_scene(&scene)
+            .map_err(|e| e.to_string())
+            .and_then(|s| s.bench_json(iterations.max(1)).map_err(|e| e.to_string()))
+            .map(|v| v.to_string()),
         Command::Demo { iterations } => contacts::demo::run(iterations.max(1)),
     };
     match result {
         Ok(text) => {
-            println!("{text}");
+            // A closed pipe (e.g. `| head`) is not an error of ours.
+            let _ = writeln!(std::io::stdout().lock(), "{text}");
             ExitCode::SUCCESS
         }
         Err(e) => {

@@ -2,7 +2,7 @@
 
 use crate::output::{pair_json, state_name};
 use crate::scene::{Scene, SceneError};
-use contact_pipeline::{ContactPipeline, PairReport, PreparedObject, QueryScratch};
+use contact_pipeline::{ContactPipeline, PairReport, PreparedObject, QueryError, QueryScratch};
 use serde_json::{Value, json};
 use std::path::Path;
 use std::time::Instant;
@@ -22,7 +22,22 @@ pub struct PreparedScene {
 /// # Errors
 /// A [`SceneError`] for unreadable or invalid input.
 pub fn prepare_scene(path: &Path) -> Result<PreparedScene, SceneError> {
-    let scene = Scene::from_file(path)?;
+    prepare(Scene::from_file(path)?)
+}
+
+/// Reads and prepares a scene given as text whose objects are all built-in or inline.
+///
+/// # Errors
+/// A [`SceneError`] for invalid input.
+pub fn prepare_scene_text(text: &str) -> Result<PreparedScene, SceneError> {
+    prepare(Scene::from_json(
+        text,
+        Path::new("<built-in scene>"),
+        Path::new("."),
+    )?)
+}
+
+fn prepare(scene: Scene) -> Result<PreparedScene, SceneError> {
     let pipeline = ContactPipeline::new(scene.options)?;
     let objects = scene
         .objects
@@ -31,10 +46,17 @@ pub fn prepare_scene(path: &Path) -> Result<PreparedScene, SceneError> {
         .map(|(i, o)| {
             pipeline
                 .prepare_description(&o.description)
-                .map_err(|source| SceneError::Object { at: format!("objects[{i}] ({})", o.name), source })
+                .map_err(|source| SceneError::Object {
+                    at: format!("objects[{i}] ({})", o.name),
+                    source,
+                })
         })
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(PreparedScene { scene, pipeline, objects })
+    Ok(PreparedScene {
+        scene,
+        pipeline,
+        objects,
+    })
 }
 
 impl PreparedScene {
@@ -42,60 +64,101 @@ impl PreparedScene {
     #[must_use]
     pub fn pairs(&self) -> Vec<(usize, usize)> {
         let n = self.objects.len();
-        (0..n).flat_map(|i| (i + 1..n).map(move |j| (i, j))).collect()
+        (0..n)
+            .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+            .collect()
     }
 
     /// Queries pair (i, j) once.
-    #[must_use]
-    pub fn query(&self, (i, j): (usize, usize), scratch: &mut QueryScratch) -> PairReport {
+    ///
+    /// # Errors
+    /// [`QueryError`] if a stage refuses the pair.
+    pub fn query(
+        &self,
+        (i, j): (usize, usize),
+        scratch: &mut QueryScratch,
+    ) -> Result<PairReport, QueryError> {
         let (a, b) = (&self.scene.objects[i], &self.scene.objects[j]);
-        self.pipeline.query(&self.objects[i], &a.pose, &self.objects[j], &b.pose, scratch)
+        self.pipeline.query(
+            &self.objects[i],
+            &a.pose,
+            &self.objects[j],
+            &b.pose,
+            scratch,
+        )
     }
 
     /// `contacts query`: every pair's result.
-    #[must_use]
-    pub fn query_json(&self) -> Value {
+    ///
+    /// # Errors
+    /// [`QueryError`] if a stage refuses a pair.
+    pub fn query_json(&self) -> Result<Value, QueryError> {
         let mut scratch = QueryScratch::default();
-        let pairs: Vec<Value> = self
+        let pairs = self
             .pairs()
             .into_iter()
             .map(|(i, j)| {
-                let report = self.query((i, j), &mut scratch);
-                pair_json(&self.scene.objects[i].name, &self.scene.objects[j].name, &report)
+                let report = self.query((i, j), &mut scratch)?;
+                Ok(pair_json(
+                    &self.scene.objects[i].name,
+                    &self.scene.objects[j].name,
+                    &report,
+                ))
             })
-            .collect();
-        json!({ "pairs": pairs })
+            .collect::<Result<Vec<Value>, QueryError>>()?;
+        Ok(json!({ "pairs": pairs }))
     }
 
     /// Median and minimum wall time (µs) of `iterations` queries of pair (i, j), after as many
     /// warm-up queries, and the last report.
-    #[must_use]
-    pub fn time_pair(&self, pair: (usize, usize), iterations: usize) -> (f64, f64, PairReport) {
+    ///
+    /// # Errors
+    /// [`QueryError`] if a stage refuses the pair.
+    pub fn time_pair(
+        &self,
+        pair: (usize, usize),
+        iterations: usize,
+    ) -> Result<(f64, f64, PairReport), QueryError> {
         let mut scratch = QueryScratch::default();
-        let mut report = self.query(pair, &mut scratch);
+        let mut report = PairReport::default();
         for _ in 0..iterations {
-            report = self.query(pair, &mut scratch);
+            self.pipeline.query_into(
+                &self.objects[pair.0],
+                &self.scene.objects[pair.0].pose,
+                &self.objects[pair.1],
+                &self.scene.objects[pair.1].pose,
+                &mut scratch,
+                &mut report,
+            )?;
         }
-        let mut times: Vec<f64> = (0..iterations.max(1))
-            .map(|_| {
-                let start = Instant::now();
-                report = self.query(pair, &mut scratch);
-                start.elapsed().as_secs_f64() * 1e6
-            })
-            .collect();
+        let mut times = Vec::with_capacity(iterations.max(1));
+        for _ in 0..iterations.max(1) {
+            let start = Instant::now();
+            self.pipeline.query_into(
+                &self.objects[pair.0],
+                &self.scene.objects[pair.0].pose,
+                &self.objects[pair.1],
+                &self.scene.objects[pair.1].pose,
+                &mut scratch,
+                &mut report,
+            )?;
+            times.push(start.elapsed().as_secs_f64() * 1e6);
+        }
         times.sort_by(f64::total_cmp);
-        (times[times.len() / 2], times[0], report)
+        Ok((times[times.len() / 2], times[0], report))
     }
 
     /// `contacts bench`: median and minimum µs per query for each pair.
-    #[must_use]
-    pub fn bench_json(&self, iterations: usize) -> Value {
-        let pairs: Vec<Value> = self
+    ///
+    /// # Errors
+    /// [`QueryError`] if a stage refuses a pair.
+    pub fn bench_json(&self, iterations: usize) -> Result<Value, QueryError> {
+        let pairs = self
             .pairs()
             .into_iter()
             .map(|(i, j)| {
-                let (median, min, report) = self.time_pair((i, j), iterations);
-                json!({
+                let (median, min, report) = self.time_pair((i, j), iterations)?;
+                Ok(json!({
                     "a": self.scene.objects[i].name,
                     "b": self.scene.objects[j].name,
                     "state": state_name(report.state),
@@ -103,9 +166,9 @@ impl PreparedScene {
                     "iterations": iterations,
                     "median_us": median,
                     "min_us": min,
-                })
+                }))
             })
-            .collect();
-        json!({ "pairs": pairs })
+            .collect::<Result<Vec<Value>, QueryError>>()?;
+        Ok(json!({ "pairs": pairs }))
     }
 }

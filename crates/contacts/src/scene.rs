@@ -89,7 +89,9 @@ pub enum SceneError {
         expected: &'static str,
     },
     /// `object` names no built-in object and no readable file.
-    #[error("{at}: unknown object `{name}` (built-in objects: paperweight, goblet, bowl, pencil, jar, vase; or a path to an object file)")]
+    #[error(
+        "{at}: unknown object `{name}` (built-in objects: paperweight, goblet, bowl, pencil, jar, vase; or a path to an object file)"
+    )]
     UnknownObject {
         /// Where.
         at: String,
@@ -126,8 +128,10 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] saying what is wrong and where.
     pub fn from_file(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| SceneError::Io { path: path.to_path_buf(), message: e.to_string() })?;
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
         let base = path.parent().unwrap_or(Path::new("."));
         Self::from_json(&text, path, base)
     }
@@ -146,7 +150,10 @@ impl Scene {
         let root = object(&value, "scene", &["objects", "options", "note"])?;
         let Some(Value::Array(items)) = root.get("objects") else {
             return Err(match root.get("objects") {
-                None => SceneError::MissingField { at: "scene".into(), field: "objects" },
+                None => SceneError::MissingField {
+                    at: "scene".into(),
+                    field: "objects",
+                },
                 Some(_) => wrong("scene.objects", "an array of objects"),
             });
         };
@@ -168,19 +175,38 @@ impl Scene {
 }
 
 fn wrong(at: &str, expected: &'static str) -> SceneError {
-    SceneError::WrongType { at: at.into(), expected }
+    SceneError::WrongType {
+        at: at.into(),
+        expected,
+    }
 }
 
-fn object<'a>(value: &'a Value, at: &str, allowed: &[&str]) -> Result<&'a Map<String, Value>, SceneError> {
-    let Value::Object(map) = value else { return Err(wrong(at, "an object")) };
+fn object<'a>(
+    value: &'a Value,
+    at: &str,
+    allowed: &[&str],
+) -> Result<&'a Map<String, Value>, SceneError> {
+    let Value::Object(map) = value else {
+        return Err(wrong(at, "an object"));
+    };
     if let Some(field) = map.keys().find(|k| !allowed.contains(&k.as_str())) {
-        return Err(SceneError::UnknownField { at: at.into(), field: field.clone() });
+        return Err(SceneError::UnknownField {
+            at: at.into(),
+            field: field.clone(),
+        });
     }
     Ok(map)
 }
 
-fn numbers<const N: usize>(value: &Value, at: &str, expected: &'static str) -> Result<[f64; N], SceneError> {
-    let list = value.as_array().filter(|l| l.len() == N).ok_or_else(|| wrong(at, expected))?;
+fn numbers<const N: usize>(
+    value: &Value,
+    at: &str,
+    expected: &'static str,
+) -> Result<[f64; N], SceneError> {
+    let list = value
+        .as_array()
+        .filter(|l| l.len() == N)
+        .ok_or_else(|| wrong(at, expected))?;
     let mut out = [0.0; N];
     for (o, v) in out.iter_mut().zip(list) {
         *o = v.as_f64().ok_or_else(|| wrong(at, expected))?;
@@ -193,26 +219,51 @@ fn scene_object(value: &Value, at: &str, base: &Path) -> Result<SceneObject, Sce
     let name = match map.get("name") {
         Some(Value::String(s)) => s.clone(),
         Some(_) => return Err(wrong(&format!("{at}.name"), "a string")),
-        None => return Err(SceneError::MissingField { at: at.into(), field: "name" }),
+        None => {
+            return Err(SceneError::MissingField {
+                at: at.into(),
+                field: "name",
+            });
+        }
     };
     let object_at = format!("{at}.object");
     let description = match map.get("object") {
-        None => return Err(SceneError::MissingField { at: at.into(), field: "object" }),
+        None => {
+            return Err(SceneError::MissingField {
+                at: at.into(),
+                field: "object",
+            });
+        }
         Some(Value::String(reference)) => load_reference(reference, &object_at, base)?,
         Some(inline @ Value::Object(_)) => ObjectDescription::from_json_value(inline, &object_at)
-            .map_err(|source| SceneError::Object { at: object_at.clone(), source })?,
-        Some(_) => return Err(wrong(&object_at, "an object name, a path, or an inline object")),
+            .map_err(|source| SceneError::Object {
+            at: object_at.clone(),
+            source,
+        })?,
+        Some(_) => {
+            return Err(wrong(
+                &object_at,
+                "an object name, a path, or an inline object",
+            ));
+        }
     };
     let pose = match map.get("pose") {
         None => DPose3::IDENTITY,
         Some(v) => pose(v, &format!("{at}.pose"))?,
     };
-    Ok(SceneObject { name, description, pose })
+    Ok(SceneObject {
+        name,
+        description,
+        pose,
+    })
 }
 
 fn load_reference(reference: &str, at: &str, base: &Path) -> Result<ObjectDescription, SceneError> {
     let parse = |text: &str| {
-        ObjectDescription::from_json(text).map_err(|source| SceneError::Object { at: at.into(), source })
+        ObjectDescription::from_json(text).map_err(|source| SceneError::Object {
+            at: at.into(),
+            source,
+        })
     };
     if let Some(text) = builtin_object(reference) {
         return parse(text);
@@ -221,9 +272,15 @@ fn load_reference(reference: &str, at: &str, base: &Path) -> Result<ObjectDescri
     match std::fs::read_to_string(&path) {
         Ok(text) => parse(&text),
         Err(_) if !reference.ends_with(".json") && !reference.contains('/') => {
-            Err(SceneError::UnknownObject { at: at.into(), name: reference.into() })
+            Err(SceneError::UnknownObject {
+                at: at.into(),
+                name: reference.into(),
+            })
         }
-        Err(e) => Err(SceneError::Io { path, message: e.to_string() }),
+        Err(e) => Err(SceneError::Io {
+            path,
+            message: e.to_string(),
+        }),
     }
 }
 
@@ -231,13 +288,24 @@ fn pose(value: &Value, at: &str) -> Result<DPose3, SceneError> {
     let map = object(value, at, &["translation", "rotation"])?;
     let translation = match map.get("translation") {
         None => [0.0; 3],
-        Some(v) => numbers::<3>(v, &format!("{at}.translation"), "[x, y, z] of three numbers")?,
+        Some(v) => numbers::<3>(
+            v,
+            &format!("{at}.translation"),
+            "[x, y, z] of three numbers",
+        )?,
     };
     let rotation = match map.get("rotation") {
         None => [0.0, 0.0, 0.0, 1.0],
-        Some(v) => numbers::<4>(v, &format!("{at}.rotation"), "a quaternion [x, y, z, w] of four numbers")?,
+        Some(v) => numbers::<4>(
+            v,
+            &format!("{at}.rotation"),
+            "a quaternion [x, y, z, w] of four numbers",
+        )?,
     };
-    let bad = |reason: String| SceneError::BadPose { at: at.into(), reason };
+    let bad = |reason: String| SceneError::BadPose {
+        at: at.into(),
+        reason,
+    };
     if translation.iter().chain(&rotation).any(|c| !c.is_finite()) {
         return Err(bad("a component is not a finite number".into()));
     }
@@ -246,11 +314,18 @@ fn pose(value: &Value, at: &str) -> Result<DPose3, SceneError> {
     if (norm - 1.0).abs() > UNIT_TOLERANCE {
         return Err(bad(format!("rotation quaternion has norm {norm}, not 1")));
     }
-    Ok(DPose3 { rotation: q / norm, translation: DVec3::from_array(translation) })
+    Ok(DPose3 {
+        rotation: q / norm,
+        translation: DVec3::from_array(translation),
+    })
 }
 
 fn options(value: &Value) -> Result<ContactOptions, SceneError> {
-    let map = object(value, "options", &["margin", "delta1", "delta2", "chordal_tolerance"])?;
+    let map = object(
+        value,
+        "options",
+        &["margin", "delta1", "delta2", "chordal_tolerance"],
+    )?;
     let mut options = ContactOptions::default();
     for (name, slot) in [
         ("margin", &mut options.margin),
@@ -259,7 +334,9 @@ fn options(value: &Value) -> Result<ContactOptions, SceneError> {
         ("chordal_tolerance", &mut options.chordal_tolerance),
     ] {
         if let Some(v) = map.get(name) {
-            *slot = v.as_f64().ok_or_else(|| wrong(&format!("options.{name}"), "a number (mm)"))?;
+            *slot = v
+                .as_f64()
+                .ok_or_else(|| wrong(&format!("options.{name}"), "a number (mm)"))?;
         }
     }
     Ok(options)

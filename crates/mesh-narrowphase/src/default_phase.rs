@@ -254,8 +254,19 @@ fn triangle_path(
             &mut out.penetration_centres,
         );
         out.stats.regions = regions;
-        return MeshVerdict::Penetrating;
+        // One seed per region, for the caller to confirm the penetration on the exact surfaces.
+        let inverse = pose_ab.inverse();
+        for &centre in &out.penetration_centres {
+            let a = side_a.seed_side.seed_point(centre, f64::MAX);
+            let b = side_b.seed_side.seed_point(inverse * centre, f64::MAX);
+            if let (Some(a), Some(b)) = (a, b) {
+                out.seeds.push(Seed { a, b });
+            }
+        }
+        // Go on to the proxy pass: other contacts of the pair still need their seeds when
+        // Stage 3 finds the overlap to be within the chordal errors.
     }
+    let meshes_intersect = !out.penetrating_pairs.is_empty();
 
     // 2. The proxy of one side against the other's mesh: the concave side, A when both or
     // neither are.
@@ -286,14 +297,18 @@ fn triangle_path(
         &mut out.stats,
     );
     if scratch.segments.is_empty() {
-        return MeshVerdict::Separated;
+        return if meshes_intersect {
+            MeshVerdict::Penetrating
+        } else {
+            MeshVerdict::Separated
+        };
     }
     let regions = group_regions(
         &scratch.segments,
         &mut scratch.regions,
         &mut scratch.region_of,
     );
-    out.stats.regions = regions;
+    out.stats.regions += regions;
     scratch.centres.clear();
     region_centres(
         &scratch.segments,
@@ -310,7 +325,9 @@ fn triangle_path(
             out.seeds.push(Seed { a, b });
         }
     }
-    if out.seeds.is_empty() {
+    if meshes_intersect {
+        MeshVerdict::Penetrating
+    } else if out.seeds.is_empty() {
         MeshVerdict::Separated
     } else {
         MeshVerdict::Seeds

@@ -68,6 +68,12 @@ pub struct ComponentRef<'a, P> {
 /// - [`MeshVerdict::Penetrating`]: the two meshes intersect (exact predicates);
 ///   [`MeshOutput::penetrating_pairs`] lists every intersecting (triangle of A, triangle of B)
 ///   pair and [`MeshOutput::penetration_centres`] one witness point per connected region.
+///   [`MeshOutput::seeds`] also gets one seed per region (the centre projected onto both meshes)
+///   so that the caller can confirm the penetration on the exact surfaces: a mesh of a concave
+///   surface lies up to its chordal error *outside* the exact surface (its chords bridge the
+///   hollow), so intersecting meshes prove an exact penetration only deeper than e_A + e_B.
+///   The proxy pass below still runs and adds its seeds, so that the pair's other contacts are
+///   not lost when the overlap turns out to be a shallow contact.
 ///   Stage 2 reports penetration only from intersecting meshes: a mesh distance in
 ///   (0, δ1) is passed on as seeds, and Stage 3 classifies the exact distance against δ1.
 /// - [`MeshVerdict::Seeds`]: the meshes do not intersect and are within the band (plus the
@@ -93,7 +99,7 @@ pub struct ComponentRef<'a, P> {
 /// # Triangle path (a concave component, or the convex fallback)
 /// 1. Every intersecting triangle pair between the two meshes, by a simultaneous traversal of
 ///    the components' triangle BVHs and an exact triangle-triangle test: any pair means
-///    penetration.
+///    penetrating meshes (one seed per region; see the verdicts).
 /// 2. Otherwise every intersecting pair between the proxy of one component (the concave one; A
 ///    when both or neither are) and the other's mesh. The colliding pairs are grouped into
 ///    connected regions: pieces of intersection line joined end to end (mesh adjacency is not
