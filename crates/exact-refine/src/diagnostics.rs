@@ -31,7 +31,7 @@ pub(crate) fn diagnose(
         _ => f64::INFINITY,
     };
     let converged = solution.outcome == Outcome::Converged;
-    let index = state.target_index(state.sign(a, b));
+    let index = state.index(a, b);
     let second_order = match index {
         0 => values.first().is_none_or(|&l| l >= -floor),
         k => values[k - 1] <= floor && values.get(k).is_none_or(|&l| l >= -floor),

@@ -2,9 +2,10 @@
 //! point, its first and second derivatives for 0, 1 or 2 parameters, and an outward direction.
 
 use geom_param::{Boundary, DPose3, DVec3, FeatureLocation, ParamRange, ParamSide, Solid};
+use glam::DMat3;
 
 /// What one side of the problem is: a feature of a posed solid, or a fixed point (the target
-/// of a projection). Positions are in A's frame: a solid's points are `pose * local`.
+/// of a projection). Positions are in A's frame: a solid's points are `frame.point(local)`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Body<'a> {
     /// A solid posed in A's frame.
@@ -12,10 +13,47 @@ pub(crate) enum Body<'a> {
         /// The solid.
         solid: &'a Solid,
         /// Its pose in A's frame.
-        pose: DPose3,
+        frame: Frame,
     },
     /// A fixed point in A's frame (no parameters).
     Point(DVec3),
+}
+
+/// A pose with its rotation as a matrix: applied to the point and five derivatives of every
+/// evaluation, where a matrix product costs half a quaternion rotation.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame {
+    rotation: DMat3,
+    translation: DVec3,
+}
+
+impl Frame {
+    pub(crate) fn new(pose: &DPose3) -> Self {
+        Self {
+            rotation: DMat3::from_quat(pose.rotation),
+            translation: pose.translation,
+        }
+    }
+
+    /// A direction in A's frame.
+    pub(crate) fn vector(&self, v: DVec3) -> DVec3 {
+        self.rotation * v
+    }
+
+    /// A point in A's frame.
+    pub(crate) fn point(&self, p: DVec3) -> DVec3 {
+        self.rotation * p + self.translation
+    }
+}
+
+/// `range.normalize(t)`, keeping a value already inside the range as it is (the usual case:
+/// [`crate::feature_switch::settle`] keeps parameters there) without a remainder computation.
+pub(crate) fn wrap(range: &ParamRange, t: f64) -> f64 {
+    if range.periodic && t >= range.min && t < range.max {
+        t
+    } else {
+        range.normalize(t)
+    }
 }
 
 /// Where the variable point of a body is: a feature location, or `None` for a fixed point.
@@ -102,38 +140,57 @@ impl Body<'_> {
                 point: *p,
                 ..FeatureEval::default()
             },
-            (Self::Solid { solid, pose }, Some(location)) => {
-                let r = |v: DVec3| pose.rotation * v;
+            (Self::Solid { solid, frame }, Some(location)) => {
+                let r = |v: DVec3| frame.vector(v);
                 match *location {
                     FeatureLocation::Face { id, u, v } => {
-                        let s = solid.eval_face(id, u, v);
+                        let surface = &solid.face(id).surface;
+                        let [du, dv] = surface.domain();
+                        let s = surface.eval(wrap(&du, u), wrap(&dv, v));
                         FeatureEval {
-                            point: *pose * s.point,
+                            point: frame.point(s.point),
                             n: 2,
                             d: [r(s.du), r(s.dv)],
                             dd: [[r(s.duu), r(s.duv)], [r(s.duv), r(s.dvv)]],
                         }
                     }
                     FeatureLocation::Edge { id, t } => {
-                        let c = solid.eval_edge(id, t);
+                        let curve = &solid.edge(id).curve;
+                        let c = curve.eval(wrap(&curve.domain(), t));
                         FeatureEval {
-                            point: *pose * c.point,
+                            point: frame.point(c.point),
                             n: 1,
                             d: [r(c.d1), DVec3::ZERO],
                             dd: [[r(c.d2), DVec3::ZERO], [DVec3::ZERO; 2]],
                         }
                     }
                     FeatureLocation::Vertex { id } => FeatureEval {
-                        point: *pose * solid.vertex(id).point,
+                        point: frame.point(solid.vertex(id).point),
                         ..FeatureEval::default()
                     },
                 }
             }
-            (Self::Solid { pose, .. }, None) => FeatureEval {
-                point: pose.translation,
+            (Self::Solid { frame, .. }, None) => FeatureEval {
+                point: frame.translation,
                 ..FeatureEval::default()
             },
         }
+    }
+
+    /// [`Self::outward`] at `loc` where `eval` is the evaluation there: on a face the normal is
+    /// ∂P/∂u × ∂P/∂v of `eval` (the orientation of every face), which costs no evaluation;
+    /// where that cross product is degenerate (a pole) the surface's own normal.
+    pub fn outward_at(&self, loc: &Loc, eval: &FeatureEval) -> Option<DVec3> {
+        if let (Some(FeatureLocation::Face { .. }), 2) = (loc, eval.n) {
+            // Unit derivatives first, so that a tiny speed near an axis loses no precision.
+            let cross = eval.d[0]
+                .normalize_or_zero()
+                .cross(eval.d[1].normalize_or_zero());
+            if cross.length_squared() > 1e-12 {
+                return Some(cross.normalize());
+            }
+        }
+        self.outward(loc)
     }
 
     /// Unit outward direction of the solid at `loc`, in A's frame: the face normal; for an edge
@@ -141,18 +198,18 @@ impl Body<'_> {
     /// an apex minus the mean of the faces' inward tangents. `None` for a fixed point or where
     /// none of these exists.
     pub fn outward(&self, loc: &Loc) -> Option<DVec3> {
-        let (Self::Solid { solid, pose }, Some(location)) = (self, loc) else {
+        let (Self::Solid { solid, frame }, Some(location)) = (self, loc) else {
             return None;
         };
         let local = match *location {
             FeatureLocation::Face { id, u, v } => {
                 let surface = &solid.face(id).surface;
                 let [du, dv] = surface.domain();
-                surface.normal(du.normalize(u), dv.normalize(v))
+                surface.normal(wrap(&du, u), wrap(&dv, v))
             }
             FeatureLocation::Edge { id, t } => {
                 let edge = solid.edge(id);
-                let t = edge.curve.domain().normalize(t);
+                let t = wrap(&edge.curve.domain(), t);
                 let sum: DVec3 = edge
                     .uses
                     .iter()
@@ -165,29 +222,33 @@ impl Body<'_> {
                 sum.try_normalize()
             }
             FeatureLocation::Vertex { id } => {
-                let mut pole = None;
-                let mut inward = DVec3::ZERO;
-                for (face_id, side) in vertex_sides(solid, id) {
-                    let surface = &solid.face(face_id).surface;
-                    let domain = surface.domain();
-                    let running = if matches!(side, ParamSide::UMin | ParamSide::UMax) {
-                        1
-                    } else {
-                        0
-                    };
-                    for k in 0..4 {
-                        let t = domain[running].min + domain[running].span() * f64::from(k) / 4.0;
-                        let [a, b] = side_params(&domain, side, t);
-                        if pole.is_none() {
-                            pole = surface.normal(a, b);
-                        }
-                        inward += inward_tangent(surface.eval(a, b), side).normalize_or_zero();
-                    }
-                }
-                pole.or_else(|| (-inward).try_normalize())
+                let samples = || {
+                    vertex_sides(solid, id).flat_map(move |(face_id, side)| {
+                        let surface = &solid.face(face_id).surface;
+                        let domain = surface.domain();
+                        let running =
+                            usize::from(matches!(side, ParamSide::UMin | ParamSide::UMax));
+                        (0..4).map(move |k| {
+                            let t =
+                                domain[running].min + domain[running].span() * f64::from(k) / 4.0;
+                            (surface, side, side_params(&domain, side, t))
+                        })
+                    })
+                };
+                // A pole has a normal; only an apex needs the (more costly) inward tangents.
+                samples()
+                    .find_map(|(surface, _, [a, b])| surface.normal(a, b))
+                    .or_else(|| {
+                        let inward: DVec3 = samples()
+                            .map(|(surface, side, [a, b])| {
+                                inward_tangent(surface.eval(a, b), side).normalize_or_zero()
+                            })
+                            .sum();
+                        (-inward).try_normalize()
+                    })
             }
         };
-        local.map(|n| pose.rotation * n)
+        local.map(|n| frame.vector(n))
     }
 }
 

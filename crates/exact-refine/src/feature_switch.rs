@@ -2,7 +2,7 @@
 //! onto the bounding edge or vertex when a face parameter reaches its side, and back into an
 //! adjacent face when the objective decreases into it.
 
-use crate::feature_eval::{Body, Loc, inward_tangent, side_of, side_params, vertex_sides};
+use crate::feature_eval::{Body, Loc, inward_tangent, side_of, side_params, vertex_sides, wrap};
 use geom_param::{Boundary, DVec3, FeatureLocation};
 
 /// Samples of the running parameter tried when leaving a vertex into a face: the best one is
@@ -20,7 +20,7 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
         Some(FeatureLocation::Face { id, u, v }) => {
             let face = solid.face(id);
             let domain = face.surface.domain();
-            let w = [domain[0].normalize(u), domain[1].normalize(v)];
+            let w = [wrap(&domain[0], u), wrap(&domain[1], v)];
             for i in 0..2 {
                 let range = domain[i];
                 if range.periodic || (w[i] > range.min && w[i] < range.max) {
@@ -28,7 +28,7 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
                 }
                 match face.boundary(side_of(i, w[i] >= range.max)) {
                     Boundary::Edge(e) => {
-                        let t = solid.edge(e).curve.domain().normalize(w[1 - i]);
+                        let t = wrap(&solid.edge(e).curve.domain(), w[1 - i]);
                         return Some(FeatureLocation::Edge { id: e, t });
                     }
                     Boundary::Vertex(vertex) => {
@@ -45,7 +45,7 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
         }
         Some(FeatureLocation::Edge { id, t }) => Some(FeatureLocation::Edge {
             id,
-            t: solid.edge(id).curve.domain().normalize(t),
+            t: wrap(&solid.edge(id).curve.domain(), t),
         }),
         other => other,
     }
@@ -55,7 +55,7 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
 /// direction makes the largest angle-cosine with `pull` (the direction, in A's frame, in which
 /// moving the point decreases the objective), if that component exceeds `threshold` (mm).
 pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Loc {
-    let (Body::Solid { solid, pose }, Some(location)) = (body, loc) else {
+    let (Body::Solid { solid, frame }, Some(location)) = (body, loc) else {
         return None;
     };
     let mut best: Option<(f64, FeatureLocation)> = None;
@@ -63,7 +63,7 @@ pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Lo
         let surface = &solid.face(face_id).surface;
         let domain = surface.domain();
         let [u, v] = side_params(&domain, side, t);
-        let tangent = pose.rotation * inward_tangent(surface.eval(u, v), side);
+        let tangent = frame.vector(inward_tangent(surface.eval(u, v), side));
         let score = pull.dot(tangent.normalize_or_zero());
         if score > threshold && best.is_none_or(|(s, _)| score > s) {
             best = Some((score, FeatureLocation::Face { id: face_id, u, v }));

@@ -2,20 +2,25 @@
 //! each): f = ½|P_a − P_b|² minimised with a trust region, handing penetrating pairs to
 //! [`crate::penetration`].
 //!
-//! Every step is a Newton step on the Hessian of f with each eigenvalue replaced by its floored
-//! magnitude, which makes it a descent direction of f also where the Hessian is indefinite or
-//! nearly singular (a "saddle-free" Newton step), inside a trust region on the step length (in
-//! mm: variables are scaled by their speeds |∂P/∂x_i|). Where the Hessian is positive definite
-//! this is plain Newton, so convergence is quadratic at an isolated minimum (and linear where
-//! the minimum is degenerate, e.g. at exact touch, where f is quartic along the rolling
-//! directions).
+//! Every step lies inside a trust region on the step length (in mm: variables are scaled by
+//! their speeds |∂P/∂x_i|) and is accepted only if f does not increase. Where the connecting
+//! vector is within 30 degrees of the normals it is the Newton step for the distance |d| itself
+//! ([`distance_newton_step`]), which is exact along the rolling directions where f is quartic
+//! (near touch); otherwise, or straight after such a step was rejected, the Newton step on f,
+//! by Cholesky where the Hessian is safely positive definite and otherwise with each
+//! eigenvalue replaced by its floored magnitude, which makes it a descent direction of f also
+//! where the Hessian is indefinite or nearly singular (a "saddle-free" Newton step). Both are
+//! plain Newton at an isolated minimum, so convergence there is quadratic; at an exact touch,
+//! where the minimum is degenerate, the distance step still converges in a few steps to the
+//! accuracy that rounding allows.
 
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
+use crate::dense_solve::{cholesky, cholesky_solve, smallest_eigenvalue_bound};
 use crate::feature_eval::{Body, FeatureEval, Loc, params, with_params};
 use crate::feature_switch::{reenter, settle};
 use crate::options::NewtonOptions;
-use crate::penetration::solve_penetration;
+use crate::penetration::{saddle_newton, solve_penetration};
 use crate::sym_eigen::{SymEigen, sym_eigen};
 use geom_param::DVec3;
 use std::f64::consts::PI;
@@ -72,27 +77,32 @@ impl State {
         }
         let mut gs = [0.0; 4];
         let mut hs = [[0.0; 4]; 4];
-        let mut curvature = 0.0_f64;
+        // Squared, so that the loop takes no square roots.
+        let mut curvature2 = 0.0_f64;
         for i in 0..n {
             let (si, ai) = if i < na { (1.0, true) } else { (-1.0, false) };
             gs[i] = si * d.dot(first[i]) / speed[i];
-            for j in 0..n {
+            // The Hessian is symmetric: fill the upper triangle and mirror it.
+            for j in i..n {
                 let sj = if j < na { 1.0 } else { -1.0 };
                 let same_side = (j < na) == ai;
+                let speeds = speed[i] * speed[j];
                 let second = if same_side {
                     let dd = if ai {
                         ea.dd[i][j]
                     } else {
                         eb.dd[i - na][j - na]
                     };
-                    curvature = curvature.max(dd.length() / (speed[i] * speed[j]));
+                    curvature2 = curvature2.max(dd.length_squared() / (speeds * speeds));
                     si * d.dot(dd)
                 } else {
                     0.0
                 };
-                hs[i][j] = (si * sj * first[i].dot(first[j]) + second) / (speed[i] * speed[j]);
+                hs[i][j] = (si * sj * first[i].dot(first[j]) + second) / speeds;
+                hs[j][i] = hs[i][j];
             }
         }
+        let curvature = curvature2.sqrt();
         Self {
             la,
             lb,
@@ -133,16 +143,42 @@ impl State {
 
     /// +1 when separated (or touching), −1 when penetrating: P_b lies behind A's outward
     /// direction at P_a and P_a behind B's at P_b (both tests where both directions exist; far
-    /// from the answer one of them alone is not a reliable witness of penetration).
+    /// from the answer one of them alone is not a reliable witness of penetration). Points
+    /// within rounding of each other (1e3 ε x scale, as at an exact touch) are touching: the
+    /// direction of d is noise there.
     pub(crate) fn sign(&self, a: &Body, b: &Body) -> f64 {
-        let behind_a = a.outward(&self.la).map(|n| (-self.d).dot(n) < 0.0);
-        let behind_b = b.outward(&self.lb).map(|n| self.d.dot(n) < 0.0);
+        if self.d.length() <= 1e3 * EPS * self.scale {
+            return 1.0;
+        }
+        let behind_a = self.outward_a(a).map(|n| (-self.d).dot(n) < 0.0);
+        let behind_b = self.outward_b(b).map(|n| self.d.dot(n) < 0.0);
         let penetrating = match (behind_a, behind_b) {
             (Some(x), Some(y)) => x && y,
             (Some(x), None) | (None, Some(x)) => x,
             (None, None) => false,
         };
         if penetrating { -1.0 } else { 1.0 }
+    }
+
+    /// A's outward direction at its point ([`Body::outward_at`]).
+    pub(crate) fn outward_a(&self, a: &Body) -> Option<DVec3> {
+        a.outward_at(&self.la, &self.ea)
+    }
+
+    /// B's outward direction at its point.
+    pub(crate) fn outward_b(&self, b: &Body) -> Option<DVec3> {
+        b.outward_at(&self.lb, &self.eb)
+    }
+
+    /// [`Self::target_index`] of this pair: only a pair with parameters on both sides can be
+    /// a penetration witness (with none on one side the index is 0 whatever the sign), so the
+    /// outward directions are evaluated only then.
+    pub(crate) fn index(&self, a: &Body, b: &Body) -> usize {
+        if self.na == 0 || self.na == self.n {
+            0
+        } else {
+            self.target_index(self.sign(a, b))
+        }
     }
 
     /// The number of negative eigenvalues the witness has: 0 when separated, min(n_a, n_b)
@@ -193,8 +229,20 @@ pub(crate) fn solve(
     base_scale: f64,
     options: &NewtonOptions,
 ) -> Solution {
-    let first = minimize(a, b, settle(a, la), settle(b, lb), base_scale, options);
+    let first = minimize(
+        a,
+        b,
+        settle(a, la),
+        settle(b, lb),
+        base_scale,
+        options,
+        Reentry::Allowed,
+    );
     if first.outcome == Outcome::Penetrating {
+        if let Some(mut fast) = saddle_newton(a, b, &first.state, base_scale, options) {
+            fast.iterations += first.iterations;
+            return fast;
+        }
         let mut deep = solve_penetration(a, b, first.state.la, first.state.lb, base_scale, options);
         deep.iterations += first.iterations;
         return deep;
@@ -214,10 +262,10 @@ pub(crate) fn solve(
 /// Where to restart when `state` sits on a crossing of two faces: each point moved along its
 /// face, away from the other face's outward normal, by the lens size angle / curvature.
 fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
-    let (na, nb) = (a.outward(&state.la)?, b.outward(&state.lb)?);
     if state.ea.n != 2 || state.eb.n != 2 || state.d.length() > 1e3 * EPS * state.scale {
         return None;
     }
+    let (na, nb) = (state.outward_a(a)?, state.outward_b(b)?);
     let opposed = -na.dot(nb);
     if opposed >= 1.0 - 1e-9 {
         return None; // a touch, not a crossing
@@ -247,6 +295,16 @@ fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
     Some((ra, rb))
 }
 
+/// Whether a solve that is stationary on an edge or vertex may continue into an adjacent face.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Reentry {
+    /// Continue into a face when f decreases into it.
+    Allowed,
+    /// Stay on the feature reached (a seed projection only places the start: the pair solve
+    /// tests re-entry itself, with the other feature's point as the pull).
+    Never,
+}
+
 /// The closest point to `target` on `body` near `start`: [`minimize`] against a fixed point
 /// (which never penetrates, having no outward direction).
 pub(crate) fn minimize_projection(
@@ -255,6 +313,7 @@ pub(crate) fn minimize_projection(
     start: Loc,
     base_scale: f64,
     options: &NewtonOptions,
+    reentry: Reentry,
 ) -> Solution {
     minimize(
         body,
@@ -263,6 +322,7 @@ pub(crate) fn minimize_projection(
         None,
         base_scale,
         options,
+        reentry,
     )
 }
 
@@ -275,6 +335,7 @@ fn minimize(
     lb: Loc,
     base_scale: f64,
     options: &NewtonOptions,
+    reentry: Reentry,
 ) -> Solution {
     let mut cur = State::new(a, b, la, lb, base_scale);
     let max_radius = 2.0
@@ -288,26 +349,38 @@ fn minimize(
         iterations,
         outcome,
     };
+    // Whether `cur` is new since the last penetration test (a rejected step keeps it).
+    let mut fresh = true;
+    // Whether the next step may be a distance-Newton step: not straight after one was rejected
+    // (its model failed there, e.g. approaching an intersection curve, where |d| has a kink).
+    let mut distance_ok = true;
     for iteration in 0..options.max_iterations {
-        let index = cur.target_index(cur.sign(a, b));
-        if index > 0 {
+        if fresh && cur.index(a, b) > 0 {
             return end(cur, iteration, Outcome::Penetrating);
         }
+        fresh = true;
         if cur.stationary(options) {
             // From an edge or vertex, continue into an adjacent face if f decreases into it.
             let threshold = 64.0 * EPS * cur.scale;
-            let entry_a = reenter(a, &cur.la, -cur.d, threshold);
-            let entry_b = if entry_a.is_none() {
+            let entry_a = match reentry {
+                Reentry::Allowed => reenter(a, &cur.la, -cur.d, threshold),
+                Reentry::Never => None,
+            };
+            let entry_b = if entry_a.is_none() && reentry == Reentry::Allowed {
                 reenter(b, &cur.lb, cur.d, threshold)
             } else {
                 None
             };
             if entry_a.is_none() && entry_b.is_none() {
                 // A stationary point with negative curvature (a maximum or saddle of f, e.g. two
-                // seeds on the far sides) is left along that direction.
+                // seeds on the far sides) is left along that direction. Positive definite (it
+                // factors) is the common case and needs no eigenvalues.
+                if cur.n == 0 || cholesky(&cur.hs, cur.n).is_some() {
+                    return end(cur, iteration, Outcome::Converged);
+                }
                 let eigen = sym_eigen(&cur.hs, cur.n);
                 let floor = cur.eigen_floor(&eigen);
-                if cur.n == 0 || eigen.values[0] >= -floor {
+                if eigen.values[0] >= -floor {
                     return end(cur, iteration, Outcome::Converged);
                 }
                 let step: [f64; 4] = std::array::from_fn(|i| eigen.vectors[i][0] * radius);
@@ -323,12 +396,19 @@ fn minimize(
             continue;
         }
         let n = cur.n;
-        let eigen = sym_eigen(&cur.hs, n);
-        if eigen.values[..n].iter().any(|l| !l.is_finite()) {
-            return end(cur, iteration, Outcome::Stalled);
-        }
-        let floor = cur.eigen_floor(&eigen).max(f64::MIN_POSITIVE);
-        let mut step = descent_step(&cur, &eigen, floor);
+        let distance_step = distance_ok.then(|| distance_newton_step(&cur)).flatten();
+        let by_distance = distance_step.is_some();
+        let mut step = match distance_step.or_else(|| newton_step(&cur)) {
+            Some(step) => step,
+            None => {
+                let eigen = sym_eigen(&cur.hs, n);
+                if eigen.values[..n].iter().any(|l| !l.is_finite()) {
+                    return end(cur, iteration, Outcome::Stalled);
+                }
+                let floor = cur.eigen_floor(&eigen).max(f64::MIN_POSITIVE);
+                descent_step(&cur, &eigen, floor)
+            }
+        };
         let length = step[..n].iter().map(|s| s * s).sum::<f64>().sqrt();
         if step[..n].iter().all(|s| s.abs() <= 4.0 * EPS * cur.scale) {
             // The Newton step is below what the coordinates can represent: nothing left to gain.
@@ -355,11 +435,14 @@ fn minimize(
                 radius = (2.0 * radius).min(max_radius);
             }
             cur = trial;
+            distance_ok = true;
         } else {
             radius = 0.25 * clipped;
             if radius < 4.0 * EPS * cur.scale {
                 return end(cur, iteration + 1, Outcome::Stalled);
             }
+            fresh = false;
+            distance_ok = !by_distance;
         }
     }
     let outcome = if cur.stationary(options) {
@@ -368,6 +451,62 @@ fn minimize(
         Outcome::IterationLimit
     };
     end(cur, options.max_iterations, outcome)
+}
+
+/// The plain Newton step −H⁻¹g by Cholesky where it equals [`descent_step`]: H factors and
+/// its smallest eigenvalue provably exceeds the floor of [`State::eigen_floor`] (taken with
+/// ‖H‖_F ≥ the largest eigenvalue, so it is at least as high). `None` otherwise.
+fn newton_step(cur: &State) -> Option<[f64; 4]> {
+    positive_definite_solve(cur, &cur.hs)
+}
+
+/// The Newton step for the distance |P_a − P_b| itself rather than f = ½|P_a − P_b|², where the
+/// connecting vector is within 30 degrees of the normals: −M⁻¹g with M = H − g gᵀ / |d|²
+/// (|d| times the Hessian of |d|). `None` where that does not apply or M is not safely
+/// positive definite; then Newton on f.
+///
+/// Why: along the rolling directions f = ½(σ + ½κδ²)² (gap σ, relative curvature κ, offset δ)
+/// is quartic once δ² ≫ σ/κ, and Newton on f only cuts δ by a third per step there (dozens of
+/// steps near touch), while |d| = σ + ½κδ² is quadratic and its Newton step is exact. Along the
+/// sliding directions M differs from H by at most sin² of the angle between the connecting
+/// vector and the normals (the scaled gradient is the tangential part of d), hence the
+/// 30-degree limit; at the answer g = 0, so M = H and convergence stays quadratic. Where M is
+/// positive definite so is H (M ≤ H), so this never replaces a saddle-free step.
+fn distance_newton_step(cur: &State) -> Option<[f64; 4]> {
+    let n = cur.n;
+    let distance2 = cur.d.length_squared();
+    let tangential2: f64 = cur.gs[..n].iter().map(|g| g * g).sum();
+    // |d| well above rounding (its direction means something), the angle below 30 degrees.
+    // Also rejects NaN: every comparison with NaN is false.
+    if !(distance2 > (cur.gradient_floor() * 1e3).powi(2) && tangential2 <= 0.25 * distance2) {
+        return None;
+    }
+    let mut m = cur.hs;
+    for i in 0..n {
+        for j in 0..n {
+            m[i][j] -= cur.gs[i] * cur.gs[j] / distance2;
+        }
+    }
+    positive_definite_solve(cur, &m)
+}
+
+/// −M⁻¹g for the scaled gradient g of `cur`, where M factors and its smallest eigenvalue
+/// provably exceeds the eigenvalue floor of `cur` with ‖M‖_F for the largest; `None` otherwise.
+fn positive_definite_solve(cur: &State, m: &[[f64; 4]; 4]) -> Option<[f64; 4]> {
+    let n = cur.n;
+    let l = cholesky(m, n)?;
+    let frobenius = m[..n]
+        .iter()
+        .flat_map(|row| &row[..n])
+        .map(|h| h * h)
+        .sum::<f64>()
+        .sqrt();
+    let floor = (64.0 * EPS * (frobenius + cur.scale * cur.curvature)).max(f64::MIN_POSITIVE);
+    if smallest_eigenvalue_bound(&l, n) < floor {
+        return None;
+    }
+    let x = cholesky_solve(&l, n, &cur.gs);
+    Some(std::array::from_fn(|i| -x[i]))
 }
 
 /// Newton step with every eigenvalue replaced by its floored magnitude: a descent direction of

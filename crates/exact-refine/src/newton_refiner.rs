@@ -1,15 +1,19 @@
 //! [`NewtonRefiner`]: the default [`Refiner`] (seed projection, then safeguarded Newton).
 
 use crate::diagnostics::diagnose;
-use crate::feature_eval::Body;
+use crate::feature_eval::{Body, Frame};
 use crate::newton::{State, solve};
 use crate::options::NewtonOptions;
 use crate::projection::project;
 use crate::refiner::{RefineDiagnostics, RefineStatus, RefinedContact, Refiner};
 use geom_param::{DPose3, DVec3, FeatureLocation, Seed, SeedPoint, Solid};
 
-/// The default [`Refiner`]: projects both seed points onto their features, then runs the
-/// safeguarded Newton iteration of `newton.rs` on the pair.
+/// Tolerance (sine of the angle between the connecting vector and the normal) of the seed
+/// projections.
+const SEED_ANGLE_TOLERANCE: f64 = 1e-3;
+
+/// The default [`Refiner`]: projects both seed points onto their features (a vertex is its own
+/// projection), then runs the safeguarded Newton iteration of `newton.rs` on the pair.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct NewtonRefiner {
     /// Tolerances and caps.
@@ -39,25 +43,43 @@ impl Refiner for NewtonRefiner {
         }
         let body_a = Body::Solid {
             solid: a,
-            pose: DPose3::IDENTITY,
+            frame: Frame::new(&DPose3::IDENTITY),
         };
         let body_b = Body::Solid {
             solid: b,
-            pose: *pose_ab,
+            frame: Frame::new(pose_ab),
         };
         let base = pose_ab.translation.length();
         let options = &self.options;
+        // The projections only place the start of the pair solve, which alone decides the
+        // accuracy: a connecting vector within 1e-3 rad of the normal is start enough (it
+        // saves the last, quadratically converging, steps of each).
+        let seed_options = NewtonOptions {
+            angle_tolerance: options.angle_tolerance.max(SEED_ANGLE_TOLERANCE),
+            ..*options
+        };
+        // A vertex has no parameters to place: whether the answer lies on an adjacent face
+        // instead is decided by the pair solve's own re-entry test.
+        let placeable = |point: &SeedPoint, start: &FeatureLocation| {
+            point.local_point.is_finite() && !matches!(start, FeatureLocation::Vertex { .. })
+        };
         let mut la = Some(start_a);
         let mut lb = Some(start_b);
-        if seed.a.local_point.is_finite() {
-            la = project(&body_a, la, seed.a.local_point, 0.0, options)
+        if placeable(&seed.a, &start_a) {
+            la = project(&body_a, la, seed.a.local_point, 0.0, &seed_options)
                 .state
                 .la;
         }
-        if seed.b.local_point.is_finite() {
-            lb = project(&body_b, lb, *pose_ab * seed.b.local_point, base, options)
-                .state
-                .la;
+        if placeable(&seed.b, &start_b) {
+            lb = project(
+                &body_b,
+                lb,
+                *pose_ab * seed.b.local_point,
+                base,
+                &seed_options,
+            )
+            .state
+            .la;
         }
         let solution = solve(&body_a, &body_b, la, lb, base, options);
         let (distance, normal) = signed_distance(&body_a, &body_b, &solution.state);
@@ -79,15 +101,15 @@ impl Refiner for NewtonRefiner {
 fn signed_distance(a: &Body, b: &Body, state: &State) -> (f64, DVec3) {
     let gap = -state.d; // P_b − P_a
     if let Some(FeatureLocation::Face { .. }) = state.la {
-        if let Some(n) = a.outward(&state.la) {
+        if let Some(n) = state.outward_a(a) {
             return (gap.dot(n), n);
         }
     }
     let sign = state.sign(a, b);
     let normal = (gap * sign)
         .try_normalize()
-        .or_else(|| b.outward(&state.lb).map(|n| -n))
-        .or_else(|| a.outward(&state.la))
+        .or_else(|| state.outward_b(b).map(|n| -n))
+        .or_else(|| state.outward_a(a))
         .unwrap_or(DVec3::Z);
     (sign * gap.length(), normal)
 }

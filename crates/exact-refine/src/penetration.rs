@@ -13,13 +13,18 @@
 //! inner block in the Hessian of f (the Hessian of ½D²), Hess D = (S − ∇D ∇Dᵀ) / D; the step
 //! is Newton on D with that Hessian made negative definite (eigenvalues floored), or a gradient
 //! step where |D| is at rounding level, inside a trust region on D.
+//!
+//! Close to the witness (a Stage 2 seed), [`saddle_newton`] first tries plain Newton on
+//! ∇f = 0, which needs no projections and is accepted only if it converges quadratically to a
+//! stationary pair with exactly the witness's inertia; otherwise the nested solver runs.
 
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 
+use crate::dense_solve::{cholesky, cholesky_solve, lu_solve};
 use crate::feature_eval::{Body, Loc};
 use crate::feature_switch::{reenter, settle};
-use crate::newton::{EPS, Outcome, Solution, State, minimize_projection, take_step};
+use crate::newton::{EPS, Outcome, Reentry, Solution, State, minimize_projection, take_step};
 use crate::options::NewtonOptions;
 use crate::sym_eigen::sym_eigen;
 use geom_param::DVec3;
@@ -48,8 +53,14 @@ pub(crate) fn solve_penetration(
         } else {
             (b, a, lb, la)
         };
-        let projection =
-            minimize_projection(inner, outer.eval(&lo).point, li, base_scale, &inner_options);
+        let projection = minimize_projection(
+            inner,
+            outer.eval(&lo).point,
+            li,
+            base_scale,
+            &inner_options,
+            Reentry::Allowed,
+        );
         *steps += projection.iterations;
         let li = projection.state.la;
         if outer_is_a {
@@ -104,8 +115,12 @@ pub(crate) fn solve_penetration(
             // From an edge or vertex, continue into an adjacent face if the depth rises into it
             // (against the inner normal).
             let (outer, outer_loc) = if outer_is_a { (a, cur.la) } else { (b, cur.lb) };
-            let inner_loc = if outer_is_a { cur.lb } else { cur.la };
-            let pull = inner.outward(&inner_loc).map_or(DVec3::ZERO, |n| -n);
+            let inner_normal = if outer_is_a {
+                cur.outward_b(inner)
+            } else {
+                cur.outward_a(inner)
+            };
+            let pull = inner_normal.map_or(DVec3::ZERO, |n| -n);
             let Some(entry) = reenter(outer, &outer_loc, pull, 64.0 * EPS) else {
                 return end(cur, steps + iteration, Outcome::Converged);
             };
@@ -125,11 +140,18 @@ pub(crate) fn solve_penetration(
         if !escaping && step.iter().all(|s| s.abs() <= 4.0 * EPS * cur.scale) {
             return end(cur, steps + iteration, Outcome::Converged);
         }
+        // The inner projection starts where the outer step moves it to first order, when the
+        // step is short enough for that (turning the features by at most a quarter radian).
         let (ta, tb) = take_step(a, b, &cur, &step);
-        let trial = if outer_is_a {
-            pair(ta, cur.lb, true, &mut steps)
+        let (pa, pb) = if length * cur.curvature <= 0.25 {
+            take_step(a, b, &cur, &inner_prediction(&cur, outer_is_a, &step))
         } else {
-            pair(cur.la, tb, false, &mut steps)
+            (cur.la, cur.lb)
+        };
+        let trial = if outer_is_a {
+            pair(ta, pb, true, &mut steps)
+        } else {
+            pair(pa, tb, false, &mut steps)
         };
         if roles(&trial) != outer_is_a {
             cur = trial; // re-paired with swapped roles at the top of the loop
@@ -165,15 +187,79 @@ pub(crate) fn solve_penetration(
     end(cur, steps + options.max_iterations, outcome)
 }
 
+/// Plain Newton on ∇f = 0 from a penetrating pair near its witness, without the nested
+/// projections: the witness is the nearby critical point of f with exactly min(n_a, n_b)
+/// negative Hessian eigenvalues, and Newton converges to it quadratically from close enough.
+/// Accepted only when it behaves so: the pair stays penetrating on the same features, every
+/// step turns the features by less than 0.1 rad, the residual at least halves per step, and
+/// the end is stationary with exactly that inertia (which rules out the intersection curve,
+/// where the Hessian is positive semi-definite). `None` otherwise: the nested solver then
+/// starts from `start` (Stage 2 seeds of a penetrating pair take 2-4 steps here instead of a
+/// projection per step there).
+pub(crate) fn saddle_newton(
+    a: &Body,
+    b: &Body,
+    start: &State,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Option<Solution> {
+    /// Quadratic convergence from a good start needs 2-5 steps; more means it is not in that
+    /// regime.
+    const MAX_STEPS: u32 = 8;
+    let mut cur = *start;
+    let n = cur.n;
+    let target = cur.target_index(-1.0);
+    for iteration in 0..MAX_STEPS {
+        if target == 0 || cur.index(a, b) != target {
+            return None;
+        }
+        let step = lu_solve(&cur.hs, n, &cur.gs)?.map(|x| -x);
+        let negligible = step[..n].iter().all(|s| s.abs() <= 4.0 * EPS * cur.scale);
+        if cur.stationary(options) || negligible {
+            // The end (stationary, or the step below what the coordinates can represent) is
+            // the witness only with its inertia.
+            let eigen = sym_eigen(&cur.hs, n);
+            let floor = cur.eigen_floor(&eigen);
+            let values = &eigen.values[..n];
+            // Also rejects NaN: every comparison with NaN is false.
+            let inertia = values.iter().all(|l| l.abs() > floor)
+                && values.iter().filter(|&&l| l < 0.0).count() == target;
+            return inertia.then_some(Solution {
+                state: cur,
+                iterations: iteration,
+                outcome: Outcome::Converged,
+            });
+        }
+        let length = step[..n].iter().map(|s| s * s).sum::<f64>().sqrt();
+        // (False for NaN as well.)
+        let short = length * cur.curvature < 0.1;
+        if !short {
+            return None;
+        }
+        let (ta, tb) = take_step(a, b, &cur, &step);
+        if ta.map(|l| l.feature()) != cur.la.map(|l| l.feature())
+            || tb.map(|l| l.feature()) != cur.lb.map(|l| l.feature())
+        {
+            return None;
+        }
+        let trial = State::new(a, b, ta, tb, base_scale);
+        let halved = trial.gradient_norm() <= 0.5 * cur.gradient_norm();
+        if !halved {
+            return None;
+        }
+        cur = trial;
+    }
+    None
+}
+
 /// The signed depth D of the outer point below the inner feature (mm) and its scaled gradient
 /// over the outer variables, or `None` where the inner feature has no outward direction.
 fn depth(inner: &Body, state: &State, outer_is_a: bool) -> Option<(f64, [f64; 4])> {
-    let (inner_loc, outer_minus_inner) = if outer_is_a {
-        (state.lb, state.d)
+    let (n, outer_minus_inner) = if outer_is_a {
+        (state.outward_b(inner)?, state.d)
     } else {
-        (state.la, -state.d)
+        (state.outward_a(inner)?, -state.d)
     };
-    let n = inner.outward(&inner_loc)?;
     let (first, o0, p) = if outer_is_a {
         (&state.ea.d, 0, state.na)
     } else {
@@ -184,6 +270,35 @@ fn depth(inner: &Body, state: &State, outer_is_a: bool) -> Option<(f64, [f64; 4]
         gradient[o0 + i] = -n.dot(first[i]) / state.speed[o0 + i];
     }
     Some((-outer_minus_inner.dot(n), gradient))
+}
+
+/// The first-order move of the inner point when the outer one takes the scaled `step`: with
+/// the inner point a closest point (∇_inner f = 0), H_ii δ_inner = −H_io δ_outer (implicit
+/// function theorem). Zero where the inner block is not positive definite.
+fn inner_prediction(state: &State, outer_is_a: bool, step: &[f64; 4]) -> [f64; 4] {
+    let (n, na) = (state.n, state.na);
+    let (i0, q) = if outer_is_a { (na, n - na) } else { (0, na) };
+    let mut block = [[0.0; 4]; 4];
+    let mut rhs = [0.0; 4];
+    for i in 0..q {
+        for j in 0..q {
+            block[i][j] = state.hs[i0 + i][i0 + j];
+        }
+        rhs[i] = -(0..n)
+            .filter(|j| !(i0..i0 + q).contains(j))
+            .map(|j| state.hs[i0 + i][j] * step[j])
+            .sum::<f64>();
+    }
+    let mut out = [0.0; 4];
+    if let Some(l) = cholesky(&block, q) {
+        let x = cholesky_solve(&l, q, &rhs);
+        for i in 0..q {
+            if x[i].is_finite() {
+                out[i0 + i] = x[i];
+            }
+        }
+    }
+    out
 }
 
 /// The scaled outer step (zero on the inner variables) maximising D, clipped to `radius`, and

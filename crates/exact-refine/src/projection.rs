@@ -3,12 +3,14 @@
 //! in the paper's Stage 3.
 
 use crate::feature_eval::{Body, Loc};
-use crate::newton::{Solution, minimize_projection};
+use crate::newton::{Reentry, Solution, minimize_projection};
 use crate::options::NewtonOptions;
 use geom_param::DVec3;
 
 /// The closest point to `target` (A's frame) on `body`'s feature near `start`, switching feature
-/// where the projection leaves a face. `base_scale` as in [`solve`].
+/// where the projection leaves a face but never back into one (from an edge seed next to a face,
+/// that would only be undone by the pair solve). `base_scale` as in
+/// [`crate::newton::solve`].
 pub(crate) fn project(
     body: &Body,
     start: Loc,
@@ -16,5 +18,5 @@ pub(crate) fn project(
     base_scale: f64,
     options: &NewtonOptions,
 ) -> Solution {
-    minimize_projection(body, target, start, base_scale, options)
+    minimize_projection(body, target, start, base_scale, options, Reentry::Never)
 }

@@ -23,44 +23,56 @@ pub(crate) fn sym_eigen(matrix: &[[f64; 4]; 4], n: usize) -> SymEigen {
     for (i, row) in v.iter_mut().enumerate().take(n) {
         row[i] = 1.0;
     }
-    let norm2: f64 = (0..n)
-        .flat_map(|i| (0..n).map(move |j| (i, j)))
-        .map(|(i, j)| a[i][j] * a[i][j])
-        .sum();
+    // Plain loops (no iterator adapters): this runs once or twice per Newton step. The
+    // rotations keep `a` exactly symmetric, so only the upper triangle is summed.
+    let mut norm2 = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            norm2 += a[i][j] * a[i][j];
+        }
+    }
     for _ in 0..MAX_SWEEPS {
-        let off: f64 = (0..n)
-            .flat_map(|i| (0..n).map(move |j| (i, j)))
-            .filter(|(i, j)| i != j)
-            .map(|(i, j)| a[i][j] * a[i][j])
-            .sum();
+        let mut off = 0.0;
+        for i in 0..n {
+            for j in i + 1..n {
+                off += 2.0 * a[i][j] * a[i][j];
+            }
+        }
         if off.is_nan() || off <= 16.0 * f64::EPSILON * f64::EPSILON * norm2 {
             break;
         }
         for p in 0..n {
             for q in p + 1..n {
-                if a[p][q] == 0.0 {
+                let apq = a[p][q];
+                if apq == 0.0 {
                     continue;
                 }
-                // Rotation that zeroes a[p][q] (the stable form of Rutishauser).
-                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                // Rotation that zeroes a[p][q] (the stable form of Rutishauser), applied to the
+                // two rows and columns it changes: x' = x - s (y + τ x), y' = y + s (x - τ y)
+                // with τ = s / (1 + c), i.e. (c x - s y, s x + c y).
+                let theta = (a[q][q] - a[p][p]) / (2.0 * apq);
                 let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
                 let t = if theta == 0.0 { 1.0 } else { t };
                 let c = 1.0 / (t * t + 1.0).sqrt();
                 let s = t * c;
+                let tau = s / (1.0 + c);
+                a[p][p] -= t * apq;
+                a[q][q] += t * apq;
+                a[p][q] = 0.0;
+                a[q][p] = 0.0;
                 for k in 0..n {
-                    let (akp, akq) = (a[k][p], a[k][q]);
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for k in 0..n {
-                    let (apk, aqk) = (a[p][k], a[q][k]);
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
+                    if k != p && k != q {
+                        let (x, y) = (a[k][p], a[k][q]);
+                        a[k][p] = x - s * (y + tau * x);
+                        a[k][q] = y + s * (x - tau * y);
+                        a[p][k] = a[k][p];
+                        a[q][k] = a[k][q];
+                    }
                 }
                 for row in v.iter_mut().take(n) {
-                    let (vkp, vkq) = (row[p], row[q]);
-                    row[p] = c * vkp - s * vkq;
-                    row[q] = s * vkp + c * vkq;
+                    let (x, y) = (row[p], row[q]);
+                    row[p] = x - s * (y + tau * x);
+                    row[q] = y + s * (x - tau * y);
                 }
             }
         }
