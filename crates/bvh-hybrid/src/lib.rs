@@ -9,8 +9,9 @@
 //! curved components much better than boxes. Every volume covers its component's exact
 //! surface (the mesh plus its measured chordal error) inflated by half the margin `delta`, so
 //! two leaves overlap whenever their components come within `delta`; `delta` must exceed the
-//! motion of one time step (section III-A). Overlap tests are exact separating-axis tests for
-//! the volumes used, so no pair within the margin is missed and false positives only cost time.
+//! motion of one time step (section III-A). Overlap tests are exact for the volumes used
+//! (separating-axis tests for boxes, GJK with a separating-axis fallback for bevelled leaves),
+//! so no pair within the margin is missed and false positives only cost time.
 //!
 //! - [`BroadPhase`]: the Stage 1 boundary trait (frames, margin, guarantees).
 //! - [`HybridBvh`]: its default implementation; [`HybridTree`] (build, [`HybridTree::validate`])
@@ -25,6 +26,7 @@
 
 pub mod bevelled_volume;
 mod broad_phase;
+mod gjk;
 mod hybrid_bvh;
 mod hybrid_tree;
 pub mod obb;
