@@ -262,9 +262,18 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             report.stats.refined += 1;
             if refined.distance < options.delta1 {
                 report.state = PairState::Penetration;
-                report
+                let witness = *pose_a * (0.5 * (refined.point_a + refined.point_b));
+                let tolerance = merge_tolerance(
+                    &refined,
+                    a.model.profile.scale().max(b.model.profile.scale()),
+                );
+                if report
                     .penetration_witnesses
-                    .push(*pose_a * (0.5 * (refined.point_a + refined.point_b)));
+                    .iter()
+                    .all(|w| w.distance(witness) > tolerance)
+                {
+                    report.penetration_witnesses.push(witness);
+                }
                 if options.depth == QueryDepth::StateOnly {
                     break;
                 }

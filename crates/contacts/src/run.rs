@@ -121,27 +121,22 @@ impl PreparedScene {
     ) -> Result<(f64, f64, PairReport), QueryError> {
         let mut scratch = QueryScratch::default();
         let mut report = PairReport::default();
+        let (a, b) = (&self.objects[pair.0], &self.objects[pair.1]);
+        let (pose_a, pose_b) = (
+            &self.scene.objects[pair.0].pose,
+            &self.scene.objects[pair.1].pose,
+        );
+        let mut query = |report: &mut PairReport| {
+            self.pipeline
+                .query_into(a, pose_a, b, pose_b, &mut scratch, report)
+        };
         for _ in 0..iterations {
-            self.pipeline.query_into(
-                &self.objects[pair.0],
-                &self.scene.objects[pair.0].pose,
-                &self.objects[pair.1],
-                &self.scene.objects[pair.1].pose,
-                &mut scratch,
-                &mut report,
-            )?;
+            query(&mut report)?;
         }
         let mut times = Vec::with_capacity(iterations.max(1));
         for _ in 0..iterations.max(1) {
             let start = Instant::now();
-            self.pipeline.query_into(
-                &self.objects[pair.0],
-                &self.scene.objects[pair.0].pose,
-                &self.objects[pair.1],
-                &self.scene.objects[pair.1].pose,
-                &mut scratch,
-                &mut report,
-            )?;
+            query(&mut report)?;
             times.push(start.elapsed().as_secs_f64() * 1e6);
         }
         times.sort_by(f64::total_cmp);

@@ -255,14 +255,13 @@ fn triangle_path(
         );
         out.stats.regions = regions;
         // One seed per region, for the caller to confirm the penetration on the exact surfaces.
-        let inverse = pose_ab.inverse();
-        for &centre in &out.penetration_centres {
-            let a = side_a.seed_side.seed_point(centre, f64::MAX);
-            let b = side_b.seed_side.seed_point(inverse * centre, f64::MAX);
-            if let (Some(a), Some(b)) = (a, b) {
-                out.seeds.push(Seed { a, b });
-            }
-        }
+        push_region_seeds(
+            side_a,
+            side_b,
+            pose_ab,
+            &out.penetration_centres,
+            &mut out.seeds,
+        );
         // Go on to the proxy pass: other contacts of the pair still need their seeds when
         // Stage 3 finds the overlap to be within the chordal errors.
     }
@@ -317,20 +316,31 @@ fn triangle_path(
         &mut scratch.regions,
         &mut scratch.centres,
     );
-    let inverse = pose_ab.inverse();
-    for &centre in &scratch.centres {
-        let a = side_a.seed_side.seed_point(centre, f64::MAX);
-        let b = side_b.seed_side.seed_point(inverse * centre, f64::MAX);
-        if let (Some(a), Some(b)) = (a, b) {
-            out.seeds.push(Seed { a, b });
-        }
-    }
+    push_region_seeds(side_a, side_b, pose_ab, &scratch.centres, &mut out.seeds);
     if meshes_intersect {
         MeshVerdict::Penetrating
     } else if out.seeds.is_empty() {
         MeshVerdict::Separated
     } else {
         MeshVerdict::Seeds
+    }
+}
+
+/// One seed per region centre (A's frame): the centre projected onto both meshes.
+fn push_region_seeds(
+    side_a: &Side<'_>,
+    side_b: &Side<'_>,
+    pose_ab: &DPose3,
+    centres: &[DVec3],
+    seeds: &mut Vec<Seed>,
+) {
+    let inverse = pose_ab.inverse();
+    for &centre in centres {
+        let a = side_a.seed_side.seed_point(centre, f64::MAX);
+        let b = side_b.seed_side.seed_point(inverse * centre, f64::MAX);
+        if let (Some(a), Some(b)) = (a, b) {
+            seeds.push(Seed { a, b });
+        }
     }
 }
 
