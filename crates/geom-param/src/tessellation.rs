@@ -7,6 +7,9 @@
 //! (a ring of radius 0) is one vertex joined by a fan. Rings at segment joints are the exact edge
 //! circles, shared by the faces on both sides, so the mesh is watertight across edges.
 //!
+//! Strips are also kept stout: no taller than four vertex spacings of their wider ring (see
+//! `is_too_tall`), so that triangle trees over the mesh can cull.
+//!
 //! Refinement is driven by the measured error, not by a formula: every strip's triangles are
 //! sampled at 12 interior and edge points in parameter space and the distance between the exact
 //! point S(u, v) and its linear interpolant is taken. A strip over budget gets more vertices on
@@ -32,6 +35,8 @@ const BUDGET_FRACTION: f64 = 0.8;
 const MAX_RING_COUNT: usize = 1 << 15;
 const MAX_RINGS_PER_SEGMENT: usize = 1 << 12;
 const MAX_PASSES: usize = 64;
+/// Largest ratio of a strip's height to the vertex spacing on its wider ring.
+const MAX_ASPECT: f64 = 4.0;
 
 #[derive(Clone, Copy, Debug)]
 enum RingKind {
@@ -89,6 +94,25 @@ fn chord_error(ring: &Ring) -> f64 {
     } else {
         ring.point.x * (1.0 - (PI / ring.count as f64).cos())
     }
+}
+
+/// Whether the strip between two rings is more than [`MAX_ASPECT`] times taller (along the
+/// profile chord) than the vertex spacing that the chord budget gives its wider ring. The chordal
+/// tolerance alone lets a cylinder be two rings of needles as long as the cylinder; such slivers
+/// make every triangle tree useless (each needle's box spans the object), so the mesher keeps
+/// them stout. The spacing comes from the budget, not from the ring's actual count, which
+/// refinement may have raised: near an apex that would shrink the spacing without bound.
+fn is_too_tall(a: &Ring, b: &Ring, budget: f64) -> bool {
+    let spacing = |ring: &Ring| {
+        let natural = count_for_radius(ring.point.x, 0.5 * budget);
+        if natural <= 1 {
+            0.0
+        } else {
+            TAU * ring.point.x / natural as f64
+        }
+    };
+    let widest = spacing(a).max(spacing(b));
+    widest > 0.0 && a.point.distance(b.point) > MAX_ASPECT * widest
 }
 
 fn initial_pieces(segment: &ProfileSegment, budget: f64) -> usize {
@@ -202,6 +226,12 @@ fn refine(set: &mut RingSet, segments: &[ProfileSegment], budget: f64) {
         let mut inserts: Vec<(usize, usize, f64)> = Vec::new(); // (segment, position, s)
         for (i, list) in set.per_segment.iter().enumerate() {
             for (p, w) in list.windows(2).enumerate() {
+                if is_too_tall(&set.rings[w[0].1], &set.rings[w[1].1], budget)
+                    && list.len() < MAX_RINGS_PER_SEGMENT
+                {
+                    inserts.push((i, p + 1, 0.5 * (w[0].0 + w[1].0)));
+                    continue;
+                }
                 let strip = zip_strip(&set.rings, w[0], w[1]);
                 if strip_error(&segments[i], &set.rings, &strip) <= budget {
                     continue;
