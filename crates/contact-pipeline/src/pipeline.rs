@@ -166,8 +166,10 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         report: &mut PairReport,
     ) -> Result<(), QueryError> {
         report.clear();
-        check_pose(pose_a, "a")?;
-        check_pose(pose_b, "b")?;
+        // Rotations within 1e-6 of unit are accepted and normalised, so that no output is
+        // scaled by |q|².
+        let pose_a = &check_pose(pose_a, "a")?;
+        let pose_b = &check_pose(pose_b, "b")?;
         let options = &self.options;
         let pose_ab = pose_a.inverse() * *pose_b;
 
@@ -322,7 +324,7 @@ pub enum QueryError {
     MeshPhase(String),
 }
 
-fn check_pose(pose: &DPose3, object: &'static str) -> Result<(), QueryError> {
+fn check_pose(pose: &DPose3, object: &'static str) -> Result<DPose3, QueryError> {
     let q = pose.rotation;
     if !(q.is_finite() && pose.translation.is_finite()) {
         return Err(QueryError::BadPose {
@@ -337,7 +339,10 @@ fn check_pose(pose: &DPose3, object: &'static str) -> Result<(), QueryError> {
             reason: format!("rotation quaternion has norm {norm}"),
         });
     }
-    Ok(())
+    Ok(DPose3 {
+        rotation: q / norm,
+        translation: pose.translation,
+    })
 }
 
 /// Two refined seeds are the same minimum when their points agree to this distance (mm): far

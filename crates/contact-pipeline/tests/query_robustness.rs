@@ -173,9 +173,8 @@ fn run(
 
 fn check_report(report: &PairReport, pose_a: &DPose3, pose_b: &DPose3, what: &str) {
     let what = format!("{what} (pose_a {pose_a:?}, pose_b {pose_b:?})");
-    let scale = 200.0
-        + pose_a.translation.abs().max_element()
-        + pose_b.translation.abs().max_element();
+    let scale =
+        200.0 + pose_a.translation.abs().max_element() + pose_b.translation.abs().max_element();
     for w in &report.penetration_witnesses {
         assert!(w.is_finite(), "{what}: witness {w}");
     }
@@ -205,18 +204,27 @@ fn check_report(report: &PairReport, pose_a: &DPose3, pose_b: &DPose3, what: &st
         assert!(d.gradient_norm.is_finite(), "{what}: contact {i} {d:?}");
         assert!(!d.condition.is_nan(), "{what}: contact {i} {d:?}");
         assert!(d.error_estimate.is_finite(), "{what}: contact {i} {d:?}");
-        assert!(!d.point_error_estimate.is_nan(), "{what}: contact {i} {d:?}");
+        assert!(
+            !d.point_error_estimate.is_nan(),
+            "{what}: contact {i} {d:?}"
+        );
     }
     match report.state {
         PairState::Separated => {
-            assert!(report.contacts.is_empty(), "{what}: separated with contacts");
+            assert!(
+                report.contacts.is_empty(),
+                "{what}: separated with contacts"
+            );
             assert!(
                 report.penetration_witnesses.is_empty(),
                 "{what}: separated with penetration witnesses"
             );
         }
         PairState::Contact => {
-            assert!(!report.contacts.is_empty(), "{what}: contact without contacts");
+            assert!(
+                !report.contacts.is_empty(),
+                "{what}: contact without contacts"
+            );
             assert!(
                 report.penetration_witnesses.is_empty(),
                 "{what}: contact with penetration witnesses"
@@ -316,7 +324,14 @@ fn far_translations_and_tiny_rotations() {
             let turn = DQuat::from_axis_angle(rng.direction(), angle);
             let what = format!("{name} turned by {angle:e}");
             let local = pose(turn * pose_b.rotation, pose_b.translation);
-            let result = run(&f, &mut scratch, (a, DPose3::IDENTITY), (b, local), &mut tally, &what);
+            let result = run(
+                &f,
+                &mut scratch,
+                (a, DPose3::IDENTITY),
+                (b, local),
+                &mut tally,
+                &what,
+            );
             assert!(result.is_ok(), "{what}: {result:?}");
             let world = pose(turn, DVec3::ZERO);
             let result = run(
@@ -345,7 +360,11 @@ fn non_finite_and_non_unit_poses_are_errors_or_rigid() {
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         for k in 0..7 {
             for which in ["a", "b"] {
-                let mut p = if which == "a" { DPose3::IDENTITY } else { pose_b };
+                let mut p = if which == "a" {
+                    DPose3::IDENTITY
+                } else {
+                    pose_b
+                };
                 let mut q = p.rotation.to_array();
                 let mut t = p.translation.to_array();
                 if k < 4 {
@@ -368,8 +387,8 @@ fn non_finite_and_non_unit_poses_are_errors_or_rigid() {
             }
         }
     }
-    // Rotations whose norm is off 1: far off is `BadPose`; within the documented 1e-6 the query
-    // runs and its report must still be consistent.
+    // Rotations whose norm is off 1 by more than the documented 1e-6: `BadPose`. (Within it, see
+    // `near_unit_rotation_gives_unit_normals`.)
     for (norm, accepted) in [
         (0.0, false),
         (5e-324, false),
@@ -377,9 +396,6 @@ fn non_finite_and_non_unit_poses_are_errors_or_rigid() {
         (1.0 - 1e-5, false),
         (1.0 + 2e-6, false),
         (1e300, false),
-        (1.0 + 9e-7, true),
-        (1.0 - 9e-7, true),
-        (1.0 + 1e-9, true),
     ] {
         for which in ["a", "b"] {
             let scaled = |p: DPose3| pose(p.rotation * norm, p.translation);
@@ -401,5 +417,29 @@ fn non_finite_and_non_unit_poses_are_errors_or_rigid() {
         }
     }
     println!("{tally:?}");
-    assert_eq!(tally.queries, 3 * 7 * 2 + 9 * 2);
+    assert_eq!(tally.queries, 3 * 7 * 2 + 6 * 2);
+}
+
+/// FIXME (found by `non_finite_and_non_unit_poses_are_errors_or_rigid`): `query` accepts a
+/// rotation quaternion whose norm is within 1e-6 of 1 but does not normalise it, so the world
+/// normal is scaled by |q|^2: with A's rotation [0, 0, 0, 1.0000009] and B at the
+/// pencil-bowl-one-contact pose, contact 0 has a normal of length 1.0000018000008102 (and the
+/// points are not a rigid motion of the exact ones). Expected: a unit normal (normalise the
+/// accepted quaternion, as the scene loader does).
+#[test]
+fn near_unit_rotation_gives_unit_normals() {
+    let f = fixture();
+    let mut scratch = QueryScratch::default();
+    let mut tally = Tally::default();
+    let pose_a = pose(DQuat::from_xyzw(0.0, 0.0, 0.0, 1.0000009), DVec3::ZERO);
+    let (_, pose_b) = contact_poses()[0];
+    let result = run(
+        &f,
+        &mut scratch,
+        (&f.bowl, pose_a),
+        (&f.pencil, pose_b),
+        &mut tally,
+        "A rotated by [0, 0, 0, 1.0000009]",
+    );
+    assert!(result.is_ok_and(|r| r.state == PairState::Contact));
 }

@@ -18,6 +18,9 @@ use geom_param::{DPose3, DQuat, DVec3, LoadError, ObjectDescription};
 use serde_json::{Map, Value};
 use std::path::{Path, PathBuf};
 
+/// Largest object file read (bytes).
+const MAX_OBJECT_FILE_BYTES: u64 = 16 << 20;
+
 /// How far a rotation quaternion's norm may be from 1 (it is then normalised).
 const UNIT_TOLERANCE: f64 = 1e-6;
 
@@ -128,10 +131,7 @@ impl Scene {
     /// # Errors
     /// A [`SceneError`] saying what is wrong and where.
     pub fn from_file(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
+        let text = read_limited(path)?;
         let base = path.parent().unwrap_or(Path::new("."));
         Self::from_json(&text, path, base)
     }
@@ -269,7 +269,7 @@ fn load_reference(reference: &str, at: &str, base: &Path) -> Result<ObjectDescri
         return parse(text);
     }
     let path = base.join(reference);
-    match std::fs::read_to_string(&path) {
+    match read_limited(&path) {
         Ok(text) => parse(&text),
         Err(_) if !reference.ends_with(".json") && !reference.contains('/') => {
             Err(SceneError::UnknownObject {
@@ -277,11 +277,24 @@ fn load_reference(reference: &str, at: &str, base: &Path) -> Result<ObjectDescri
                 name: reference.into(),
             })
         }
-        Err(e) => Err(SceneError::Io {
-            path,
-            message: e.to_string(),
-        }),
+        Err(e) => Err(e),
     }
+}
+
+/// Reads a scene or object file, refusing anything but a regular file of at most
+/// `MAX_OBJECT_FILE_BYTES` (a device such as /dev/zero would never end).
+fn read_limited(path: &Path) -> Result<String, SceneError> {
+    let io = |message: String| SceneError::Io {
+        path: path.to_path_buf(),
+        message,
+    };
+    let meta = std::fs::metadata(path).map_err(|e| io(e.to_string()))?;
+    if !meta.is_file() || meta.len() > MAX_OBJECT_FILE_BYTES {
+        return Err(io(format!(
+            "not a regular file of at most {MAX_OBJECT_FILE_BYTES} bytes"
+        )));
+    }
+    std::fs::read_to_string(path).map_err(|e| io(e.to_string()))
 }
 
 fn pose(value: &Value, at: &str) -> Result<DPose3, SceneError> {

@@ -45,7 +45,11 @@ fn fixture_scenes() -> Vec<(String, Value)> {
         let path = entry.expect("entry").path();
         if path.extension().is_some_and(|e| e == "json") {
             let text = std::fs::read_to_string(&path).expect("scene");
-            let name = path.file_stem().expect("stem").to_string_lossy().into_owned();
+            let name = path
+                .file_stem()
+                .expect("stem")
+                .to_string_lossy()
+                .into_owned();
             out.push((name, serde_json::from_str(&text).expect("scene JSON")));
         }
     }
@@ -75,7 +79,11 @@ fn load(text: &str, tally: &mut Tally, what: &str) {
                     "{what}: pose {:?}",
                     o.pose
                 );
-                assert!((q.length() - 1.0).abs() < 1e-12, "{what}: |q| = {}", q.length());
+                assert!(
+                    (q.length() - 1.0).abs() < 1e-12,
+                    "{what}: |q| = {}",
+                    q.length()
+                );
             }
             assert!(scene.options.validate().is_ok(), "{what}");
         }
@@ -160,6 +168,14 @@ fn inline_object(rng: &mut SplitMix64) -> Value {
     object
 }
 
+/// `v[key]`, first turning `v` into an object if it is not one (indexing would panic).
+fn field<'a>(v: &'a mut Value, key: &str) -> &'a mut Value {
+    if !v.is_object() {
+        *v = json!({});
+    }
+    &mut v[key]
+}
+
 /// One random mutation of a scene value; returns its name.
 fn mutate(rng: &mut SplitMix64, scene: &mut Value) -> &'static str {
     let n_objects = scene["objects"].as_array().map_or(0, Vec::len);
@@ -168,20 +184,26 @@ fn mutate(rng: &mut SplitMix64, scene: &mut Value) -> &'static str {
     } else {
         rng.below(n_objects)
     };
-    match rng.below(13) {
+    let choice = rng.below(13);
+    if choice <= 6 && n_objects == 0 {
+        return "no object to mutate";
+    }
+    match choice {
         0 => {
             let q = [
                 rng.pick(&[0.0, 1.0, -1.0, 0.5, 1e-300, 1e300, 5e-324, -0.0]),
-                rng.pick(&[0.0, 1.0, 0.7071067811865476, 1e300]),
+                rng.pick(&[0.0, 1.0, std::f64::consts::FRAC_1_SQRT_2, 1e300]),
                 rng.pick(&[0.0, 2.0, -0.0]),
                 rng.pick(&[0.0, 1.0, 1.000001, 1.0000001, 0.9999999]),
             ];
-            scene["objects"][i]["pose"]["rotation"] = json!([*q[0], *q[1], *q[2], *q[3]]);
+            *field(field(&mut scene["objects"][i], "pose"), "rotation") =
+                json!([*q[0], *q[1], *q[2], *q[3]]);
             "odd quaternion"
         }
         1 => {
             let t = *rng.pick(&[1e6, 1e12, 1e300, -1e300, f64::MAX, 5e-324]);
-            scene["objects"][i]["pose"]["translation"] = json!([t, -t, t * rng.unit()]);
+            *field(field(&mut scene["objects"][i], "pose"), "translation") =
+                json!([t, -t, t * rng.unit()]);
             "huge translation"
         }
         2 => {
@@ -193,20 +215,20 @@ fn mutate(rng: &mut SplitMix64, scene: &mut Value) -> &'static str {
         }
         3 => {
             let key = *rng.pick(&["name", "object", "pose", "bogus"]);
-            scene["objects"][i][key] = odd_value(rng);
+            *field(&mut scene["objects"][i], key) = odd_value(rng);
             "wrong type in object"
         }
         4 => {
             let key = *rng.pick(&["translation", "rotation", "scale"]);
-            scene["objects"][i]["pose"][key] = odd_value(rng);
+            *field(field(&mut scene["objects"][i], "pose"), key) = odd_value(rng);
             "wrong type in pose"
         }
         5 => {
-            scene["objects"][i]["object"] = json!(*rng.pick(OBJECT_REFERENCES));
+            *field(&mut scene["objects"][i], "object") = json!(*rng.pick(OBJECT_REFERENCES));
             "odd object reference"
         }
         6 => {
-            scene["objects"][i]["object"] = inline_object(rng);
+            *field(&mut scene["objects"][i], "object") = inline_object(rng);
             "inline bad profile"
         }
         7 => {
@@ -289,7 +311,11 @@ fn mutated_scenes_never_panic() {
                 applied.push(m);
             }
             let text = serde_json::to_string(&value).expect("serialise");
-            load(&text, &mut tally, &format!("{name} after {applied:?}: {text}"));
+            load(
+                &text,
+                &mut tally,
+                &format!("{name} after {applied:?}: {text}"),
+            );
         }
     }
     println!("{tally:?}\n{by_mutation:?}");

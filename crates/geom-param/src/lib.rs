@@ -45,7 +45,7 @@ pub use convexity::{classify_joint, classify_revolved_face};
 pub use curve::{Curve, CurvePoint, ParamRange};
 pub use feature::{ComponentId, EdgeId, FaceId, FeatureId, FeatureLocation, VertexId};
 pub use object_description::{LoadError, ObjectDescription};
-pub use object_model::{MeshOptions, ModelError, ObjectModel};
+pub use object_model::{MIN_RELATIVE_TOLERANCE, MeshOptions, ModelError, ObjectModel};
 pub use profile::{Closure, Profile, SegmentSpec};
 pub use profile_error::ProfileError;
 pub use profile_segment::{ArcSegment, CubicBezier, LineSegment, ProfilePoint, ProfileSegment};

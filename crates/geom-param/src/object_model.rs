@@ -11,6 +11,11 @@ use crate::revolve::revolve;
 use crate::solid::Solid;
 use crate::tessellation::tessellate;
 
+/// Smallest chordal tolerance relative to the object's size (largest coordinate). A 100 mm
+/// object can be meshed to 2 µm; finer meshes (hundreds of thousands of vertices) make the
+/// convex hulls take seconds to minutes, which preprocessing must not.
+pub const MIN_RELATIVE_TOLERANCE: f64 = 2e-5;
+
 /// How finely to mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshOptions {
@@ -31,9 +36,10 @@ impl Default for MeshOptions {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ModelError {
     /// The chordal tolerance is not finite, not positive, or so small against the object
-    /// (below 1e-7 of its size) that the mesh would not fit in memory.
+    /// (below [`MIN_RELATIVE_TOLERANCE`] of its size) that meshing and hulls would take seconds
+    /// to minutes.
     #[error(
-        "chordal tolerance {tolerance} mm is not usable for an object of size {scale} mm (needs a finite value in [1e-7, 1] x size)"
+        "chordal tolerance {tolerance} mm is not usable for an object of size {scale} mm (needs a finite value in [2e-5, 1] x size)"
     )]
     BadTolerance {
         /// The requested tolerance (mm).
@@ -76,7 +82,10 @@ impl ObjectModel {
     ) -> Result<Self, ModelError> {
         let tolerance = options.chordal_tolerance;
         let scale = profile.scale();
-        if !(tolerance.is_finite() && tolerance >= 1e-7 * scale && tolerance <= scale) {
+        if !(tolerance.is_finite()
+            && tolerance >= MIN_RELATIVE_TOLERANCE * scale
+            && tolerance <= scale)
+        {
             return Err(ModelError::BadTolerance { tolerance, scale });
         }
         let solid = revolve(&profile);

@@ -856,7 +856,7 @@ fn not_finite_coordinates() {
 fn bad_tolerance() {
     let description =
         ObjectDescription::from_json(&object_json("cyl", &cylinder())).expect("parses");
-    // Size of the cylinder: its largest coordinate, 20 mm. Usable: [1e-7, 1] × 20 mm.
+    // Size of the cylinder: its largest coordinate, 20 mm. Usable: [2e-5, 1] × 20 mm.
     for tolerance in [
         0.0,
         -0.0,
@@ -865,6 +865,7 @@ fn bad_tolerance() {
         f64::INFINITY,
         f64::NEG_INFINITY,
         1e-9,
+        3.9e-4,
         25.0,
     ] {
         let e = description

@@ -70,6 +70,9 @@ fn check_model(model: &ObjectModel, what: &str) {
 /// Loads and (if it parses) builds `text`; a panic anywhere fails the test.
 fn load(text: &str, tally: &mut Tally, what: &str) {
     tally.cases += 1;
+    if std::env::var_os("ROBUST_TRACE").is_some() {
+        eprintln!("CASE {what}");
+    }
     let Ok(description) = ObjectDescription::from_json(text) else {
         tally.parse_errors += 1;
         return;
@@ -83,6 +86,9 @@ fn build(specs: &[SegmentSpec], tally: &mut Tally, what: &str) {
         .map_err(|_| ())
         .and_then(|p| ObjectModel::from_profile("case", p, &OPTIONS).map_err(|_| ()));
     tally.slowest = tally.slowest.max(start.elapsed());
+    if std::env::var_os("ROBUST_TRACE").is_some() {
+        eprintln!("TIME {:?} {what}", start.elapsed());
+    }
     match result {
         Ok(model) => {
             tally.built += 1;
@@ -152,11 +158,11 @@ fn random_json(rng: &mut SplitMix64, depth: u32, out: &mut String) {
         rng.below(8)
     };
     match choice {
-        0 => out.push_str(rng.pick(NUMBER_TEXTS)),
-        1 => out.push_str(rng.pick(&["true", "false", "null"])),
+        0 => out.push_str(rng.pick::<&str>(NUMBER_TEXTS)),
+        1 => out.push_str(rng.pick::<&str>(&["true", "false", "null"])),
         2 => {
             out.push('"');
-            out.push_str(rng.pick(KEYS));
+            out.push_str(rng.pick::<&str>(KEYS));
             out.push('"');
         }
         3 => out.push_str(&format!("{:?}", (rng.unit() - 0.5) * 200.0)),
@@ -172,7 +178,7 @@ fn random_json(rng: &mut SplitMix64, depth: u32, out: &mut String) {
                     out.push(',');
                 }
                 out.push('"');
-                out.push_str(rng.pick(KEYS));
+                out.push_str(rng.pick::<&str>(KEYS));
                 out.push_str("\":");
                 random_json(rng, depth - 1, out);
             }
@@ -193,7 +199,7 @@ fn random_json(rng: &mut SplitMix64, depth: u32, out: &mut String) {
 
 /// A profile of 0..6 random segments, each coordinate an edge-case literal or a plain number.
 fn random_object(rng: &mut SplitMix64) -> String {
-    let mut num = |rng: &mut SplitMix64| -> String {
+    let num = |rng: &mut SplitMix64| -> String {
         if rng.below(3) == 0 {
             rng.pick(NUMBER_TEXTS).to_string()
         } else {
@@ -202,7 +208,7 @@ fn random_object(rng: &mut SplitMix64) -> String {
     };
     let mut segments = Vec::new();
     for _ in 0..rng.below(7) {
-        let mut pt = |rng: &mut SplitMix64| format!("[{}, {}]", num(rng), num(rng));
+        let pt = |rng: &mut SplitMix64| format!("[{}, {}]", num(rng), num(rng));
         segments.push(match rng.below(3) {
             0 => format!(r#"{{"line": {{"from": {}, "to": {}}}}}"#, pt(rng), pt(rng)),
             1 => format!(
@@ -229,7 +235,7 @@ fn random_object(rng: &mut SplitMix64) -> String {
 
 #[test]
 fn random_bytes_and_random_json_never_panic() {
-    let mut rng = SplitMix64(0x0B1E_C7_10AD);
+    let mut rng = SplitMix64(0x000B_1EC7_10AD);
     let mut tally = Tally::default();
     // Raw bytes (lossily decoded) and bytes from the JSON alphabet.
     const ALPHABET: &[u8] = b"{}[]\",:0123456789.eE+-truefalsnl \n\\u";
@@ -364,7 +370,7 @@ fn mutate(rng: &mut SplitMix64, profile: &mut Vec<Value>) -> &'static str {
             let j = (i + 1) % n;
             let target = {
                 let k = rng.below(n);
-                let mut ps = points_of(&mut profile[k]);
+                let ps = points_of(&mut profile[k]);
                 if ps.is_empty() || rng.below(4) == 0 {
                     Value::Array(vec![num(rng.unit() * 50.0), num(rng.unit() * 180.0)])
                 } else {
@@ -443,7 +449,8 @@ fn mutate(rng: &mut SplitMix64, profile: &mut Vec<Value>) -> &'static str {
         }
         _ => {
             // Scale the whole object: tiny or huge objects against the fixed 0.5 mm tolerance.
-            let factor = *rng.pick(&[1e-9, 1e-3, 1e3, 1e6, 1e12, -1.0]);
+            // (1e3 is left out: see `jar_scaled_by_1000_builds_in_bounded_time`.)
+            let factor = *rng.pick(&[1e-9, 1e-3, 10.0, 1e6, 1e12, -1.0]);
             for s in profile.iter_mut() {
                 for c in coordinates_of(s) {
                     if let Some(x) = c.as_f64() {
@@ -570,4 +577,32 @@ fn non_finite_and_denormal_coordinates_in_code_never_panic() {
     }
     println!("{tally:?}");
     assert!(tally.cases > 500);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Findings kept as regressions with their literal inputs.
+
+/// FIXME (found by `mutated_fixtures_never_panic`, seed 0xF1C7_0BE5, mutation "scale object"):
+/// the jar scaled by 1000 (91 m tall) at a 0.5 mm chordal tolerance is inside the accepted range
+/// (it was accepted when the bound was 1e-7 x size; now it is refused by the 2e-5 x size bound) but meshes into hundreds of thousands of vertices, and the convex
+/// hull of a component (parry `try_convex_hull`, from `ConvexHull::of_mesh`) then takes 19 s in
+/// one run and more than 10 minutes in another (hash-order dependent). Expected: the build ends
+/// (Ok or a typed error such as a mesh-size limit) within a few seconds.
+#[test]
+fn jar_scaled_by_1000_builds_in_bounded_time() {
+    const JAR_X1000: &str = r#"{"name":"jar","profile":[{"line":{"from":[0.0,0.0],"to":[30000.0,0.0]}},{"arc":{"ccw":true,"center":[30000.0,5000.0],"from":[30000.0,0.0],"to":[35000.0,5000.0]}},{"line":{"from":[35000.0,5000.0],"to":[35000.0,60000.0]}},{"arc":{"ccw":true,"center":[25000.0,60000.0],"from":[35000.0,60000.0],"to":[25000.0,70000.0]}},{"arc":{"ccw":false,"center":[25000.0,80000.0],"from":[25000.0,70000.0],"to":[15000.0,80000.0]}},{"line":{"from":[15000.0,80000.0],"to":[15000.0,88000.0]}},{"arc":{"ccw":true,"center":[12000.0,88000.0],"from":[15000.0,88000.0],"to":[12000.0,91000.0]}},{"line":{"from":[12000.0,91000.0],"to":[0.0,91000.0]}}]}"#;
+    let description = ObjectDescription::from_json(JAR_X1000).expect("well-formed");
+    let (send, receive) = std::sync::mpsc::channel();
+    // The build runs on its own thread so that a hang fails this test instead of the suite.
+    std::thread::spawn(move || {
+        let result = description.build(&OPTIONS).map(|m| {
+            check_model(&m, "jar x1000");
+            m.meshes.iter().map(|m| m.positions.len()).sum::<usize>()
+        });
+        let _ = send.send(result);
+    });
+    match receive.recv_timeout(Duration::from_secs(10)) {
+        Ok(result) => println!("jar x1000: {result:?}"),
+        Err(_) => panic!("jar x1000 at 0.5 mm: build still running after 10 s"),
+    }
 }
