@@ -58,6 +58,16 @@ pub(crate) struct State {
 }
 
 impl State {
+    /// The largest trust radius and the starting one (mm of arc length): twice, and half, the
+    /// larger of the current gap and the parameter speeds.
+    pub(crate) fn trust_radii(&self) -> (f64, f64) {
+        let max_radius = 2.0
+            * self.speed[..self.n]
+                .iter()
+                .fold(self.d.length(), |m, s| m.max(*s));
+        (max_radius, 0.25 * max_radius)
+    }
+
     pub(crate) fn new(a: &Body, b: &Body, la: Loc, lb: Loc, base_scale: f64) -> Self {
         let (ea, eb) = (a.eval(&la), b.eval(&lb));
         let d = ea.point - eb.point;
@@ -338,11 +348,7 @@ fn minimize(
     reentry: Reentry,
 ) -> Solution {
     let mut cur = State::new(a, b, la, lb, base_scale);
-    let max_radius = 2.0
-        * cur.speed[..cur.n]
-            .iter()
-            .fold(cur.d.length(), |m, s| m.max(*s));
-    let mut radius = 0.25 * max_radius;
+    let (max_radius, mut radius) = cur.trust_radii();
     let mut switches = 0;
     let end = |state, iterations, outcome| Solution {
         state,

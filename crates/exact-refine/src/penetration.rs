@@ -73,11 +73,7 @@ pub(crate) fn solve_penetration(
     let start = State::new(a, b, settle(a, la), settle(b, lb), base_scale);
     let mut built_as = roles(&start);
     let mut cur = pair(start.la, start.lb, built_as, &mut steps);
-    let max_radius = 2.0
-        * cur.speed[..cur.n]
-            .iter()
-            .fold(cur.d.length(), |m, s| m.max(*s));
-    let mut radius = 0.25 * max_radius;
+    let (max_radius, mut radius) = cur.trust_radii();
     let mut switches = 0;
     let end = |state, iterations, outcome| Solution {
         state,
