@@ -1,7 +1,9 @@
 //! Project automation behind `cargo xtask`: fixture generation.
 
 pub mod obj;
+pub mod random;
 pub mod paper_objects;
+pub mod report;
 pub mod scenes;
 
 use geom_param::MeshOptions;
