@@ -36,6 +36,44 @@ enum Command {
         #[arg(long, default_value_t = 2000)]
         iterations: usize,
     },
+    /// Draw the scene with every contact's points and normal marked, as a PNG picture.
+    #[cfg(feature = "render")]
+    Render {
+        /// Scene file.
+        scene: PathBuf,
+        /// PNG file to write.
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Picture width (pixels).
+        #[arg(long, default_value_t = 1024)]
+        width: u32,
+        /// Picture height (pixels).
+        #[arg(long, default_value_t = 768)]
+        height: u32,
+        /// Fit the contacts with some surroundings instead of the whole scene.
+        #[arg(long)]
+        zoom_contacts: bool,
+    },
+}
+
+/// `contacts render`: writes the picture and returns a one-line JSON summary.
+#[cfg(feature = "render")]
+fn render(
+    scene: &std::path::Path,
+    output: &std::path::Path,
+    options: &contacts::render::RenderOptions,
+) -> Result<String, String> {
+    let scene = prepare_scene(scene).map_err(|e| e.to_string())?;
+    let rendered = contacts::render::render_scene(&scene, options).map_err(|e| e.to_string())?;
+    rendered.write_png(output).map_err(|e| e.to_string())?;
+    let contacts: usize = rendered.pairs.iter().map(|p| p.report.contacts.len()).sum();
+    Ok(serde_json::json!({
+        "png": output.display().to_string(),
+        "width": options.width,
+        "height": options.height,
+        "contacts": contacts,
+    })
+    .to_string())
 }
 
 fn main() -> ExitCode {
@@ -56,6 +94,22 @@ fn main() -> ExitCode {
             .and_then(|s| s.bench_json(iterations.max(1)).map_err(|e| e.to_string()))
             .map(|v| v.to_string()),
         Command::Demo { iterations } => contacts::demo::run(iterations.max(1)),
+        #[cfg(feature = "render")]
+        Command::Render {
+            scene,
+            output,
+            width,
+            height,
+            zoom_contacts,
+        } => render(
+            &scene,
+            &output,
+            &contacts::render::RenderOptions {
+                width,
+                height,
+                zoom_contacts,
+            },
+        ),
     };
     match result {
         Ok(text) => {
