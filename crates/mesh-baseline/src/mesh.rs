@@ -54,12 +54,15 @@ impl BaselineMesh {
         for (i, t) in mesh.triangles.iter().enumerate() {
             let [a, b, c] = t.map(|k| mesh.positions[k as usize]);
             let cross = (b - a).cross(c - a);
-            if !(cross.length() > 1e-12 * size * size) {
+            // Written so that a NaN area is refused too.
+            let has_area = cross.length() > 1e-12 * size * size;
+            if !has_area {
                 return Err(BaselineError::DegenerateTriangle { triangle: i });
             }
             volume += a.dot(b.cross(c)) / 6.0;
         }
-        if !(volume > 0.0) {
+        let outward = volume > 0.0;
+        if !outward {
             return Err(BaselineError::NotOutward { volume });
         }
         let trimesh = TriMesh::with_flags(

@@ -510,7 +510,8 @@ fn distance_to_face(surface: &dyn Surface, plan: &FacePlan, point: DVec3, u: f64
         best = best.min(r.length());
         let (e, f, g) = (s.du.dot(s.du), s.du.dot(s.dv), s.dv.dot(s.dv));
         let det = e * g - f * f;
-        if !(det > 1e-12 * e * g) {
+        let regular = det > 1e-12 * e * g;
+        if !regular {
             break;
         }
         let (a, b) = (r.dot(s.du), r.dot(s.dv));
