@@ -99,3 +99,41 @@ impl Camera {
         p.dot(self.forward)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Looking along +y from above the xy plane fitting the square x, z in [−10, 10]
+    /// (in (right, up) = (x, z)) into 200 × 100 pixels with a 10 pixel margin.
+    fn front_camera() -> Camera {
+        let frame = |_: &Camera| (DVec2::splat(-10.0), DVec2::splat(10.0));
+        Camera::fitting(DVec3::new(0.0, 2.0, 0.0), frame, 200, 100, 10.0)
+    }
+
+    #[test]
+    fn basis_is_right_handed_and_orthonormal() {
+        let c = front_camera();
+        assert_eq!((c.forward, c.right, c.up), (DVec3::Y, DVec3::X, DVec3::Z));
+        let top = Camera::fitting(DVec3::NEG_Z, |_| (DVec2::ZERO, DVec2::ONE), 10, 10, 0.0);
+        assert!(top.right.dot(top.up).abs() < 1e-15);
+        assert!((top.forward.cross(top.up) - top.right).length() < 1e-15);
+    }
+
+    #[test]
+    fn fit_and_projection_closed_form() {
+        let c = front_camera();
+        // Height limits: (100 − 2·10) px / 20 mm = 4 px/mm.
+        assert_eq!(c.scale, 4.0);
+        assert_eq!(
+            c.project(DVec3::new(0.0, 7.0, 0.0)),
+            DVec2::new(100.0, 50.0)
+        );
+        assert_eq!(
+            c.project(DVec3::new(-10.0, 0.0, 10.0)),
+            DVec2::new(60.0, 10.0)
+        );
+        assert_eq!(c.project_direction(DVec3::Z), DVec2::new(0.0, -4.0));
+        assert_eq!(c.depth(DVec3::new(1.0, 3.0, 2.0)), 3.0);
+    }
+}

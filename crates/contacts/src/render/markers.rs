@@ -50,74 +50,76 @@ impl MarkerStyle {
     }
 }
 
-/// Draws every pair's markers: first all halos and arrows, then the dots on top, so no arrow
-/// hides a dot.
+/// Draws every pair's markers in layers, so that no marker's halo hides another's ink and no
+/// arrow hides a dot: all white halos, then arrows and crosses, then the dots.
 pub(crate) fn draw_markers<'a>(
     pixmap: &mut Pixmap,
     camera: &Camera,
     style: &MarkerStyle,
-    reports: impl Iterator<Item = &'a PairReport> + Clone,
+    reports: impl Iterator<Item = &'a PairReport>,
 ) {
-    let halo = paint(HALO_COLOUR);
-    let line = |width: f32| Stroke {
-        width,
-        line_cap: LineCap::Round,
-        ..Stroke::default()
-    };
-    for report in reports.clone() {
-        for c in &report.contacts {
-            if let Some((shaft, head)) = arrow(camera, style, c.point_a, c.normal) {
-                let w = style.line_width;
-                pixmap.stroke_path(
-                    &shaft,
-                    &halo,
-                    &line(w + 2.0 * style.halo),
-                    Transform::identity(),
-                    None,
-                );
-                pixmap.stroke_path(
-                    &head,
-                    &halo,
-                    &line(2.0 * style.halo),
-                    Transform::identity(),
-                    None,
-                );
-                let ink = paint(NORMAL_COLOUR);
-                pixmap.stroke_path(&shaft, &ink, &line(w), Transform::identity(), None);
-                pixmap.fill_path(&head, &ink, FillRule::Winding, Transform::identity(), None);
-            }
-        }
-        for &w in &report.penetration_witnesses {
-            if let Some(cross) = cross(camera.project(w), 1.2 * style.dot_a_radius) {
-                let width = style.line_width;
-                pixmap.stroke_path(
-                    &cross,
-                    &halo,
-                    &line(width + 2.0 * style.halo),
-                    Transform::identity(),
-                    None,
-                );
-                pixmap.stroke_path(
-                    &cross,
-                    &paint(PENETRATION_COLOUR),
-                    &line(width),
-                    Transform::identity(),
-                    None,
-                );
-            }
-        }
-    }
+    // Stroked lines (arrow shafts, crosses) with their colour; filled arrowheads; dots as
+    // (centre, radius, colour, haloed).
+    let mut lines: Vec<(Path, [u8; 3])> = Vec::new();
+    let mut heads: Vec<Path> = Vec::new();
+    let mut dots: Vec<(DVec2, f32, [u8; 3], bool)> = Vec::new();
     for report in reports {
         let (colour_a, colour_b) = match report.state {
             PairState::Penetration => (PENETRATION_COLOUR, PENETRATION_COLOUR),
             PairState::Contact | PairState::Separated => (POINT_A_COLOUR, POINT_B_COLOUR),
         };
         for c in &report.contacts {
-            let (a, b) = (camera.project(c.point_a), camera.project(c.point_b));
-            dot(pixmap, a, style.dot_a_radius + style.halo, HALO_COLOUR);
-            dot(pixmap, a, style.dot_a_radius, colour_a);
-            dot(pixmap, b, style.dot_b_radius, colour_b);
+            if let Some((shaft, head)) = arrow(camera, style, c.point_a, c.normal) {
+                lines.push((shaft, NORMAL_COLOUR));
+                heads.push(head);
+            }
+            dots.push((
+                camera.project(c.point_a),
+                style.dot_a_radius,
+                colour_a,
+                true,
+            ));
+            dots.push((
+                camera.project(c.point_b),
+                style.dot_b_radius,
+                colour_b,
+                false,
+            ));
         }
+        for &w in &report.penetration_witnesses {
+            if let Some(cross) = cross(camera.project(w), 1.2 * style.dot_a_radius) {
+                lines.push((cross, PENETRATION_COLOUR));
+            }
+        }
+    }
+    let line = |width: f32| Stroke {
+        width,
+        line_cap: LineCap::Round,
+        ..Stroke::default()
+    };
+    let id = Transform::identity();
+    let halo = paint(HALO_COLOUR);
+    let (ink_width, halo_width) = (style.line_width, style.line_width + 2.0 * style.halo);
+    for (path, _) in &lines {
+        pixmap.stroke_path(path, &halo, &line(halo_width), id, None);
+    }
+    for head in &heads {
+        pixmap.stroke_path(head, &halo, &line(2.0 * style.halo), id, None);
+    }
+    for &(centre, radius, _, haloed) in &dots {
+        if haloed {
+            dot(pixmap, centre, radius + style.halo, HALO_COLOUR);
+        }
+    }
+    for (path, colour) in &lines {
+        pixmap.stroke_path(path, &paint(*colour), &line(ink_width), id, None);
+    }
+    let ink = paint(NORMAL_COLOUR);
+    for head in &heads {
+        pixmap.fill_path(head, &ink, FillRule::Winding, id, None);
+    }
+    for &(centre, radius, colour, _) in &dots {
+        dot(pixmap, centre, radius, colour);
     }
 }
 

@@ -31,7 +31,7 @@ const MARGIN_FRACTION: f64 = 0.08;
 
 /// With [`RenderOptions::zoom_contacts`]: room shown round the contacts, as a fraction of the
 /// scene's diameter.
-const ZOOM_PADDING_FRACTION: f64 = 0.15;
+const ZOOM_PADDING_FRACTION: f64 = 0.08;
 
 /// What to render.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
