@@ -156,7 +156,8 @@ fn side_of(a: &PosedSolid, b: &PosedSolid, p: &Pair, k: usize) -> Option<ParamSi
 
 /// Residual over the parameters not in `active` (see the module docs). Where u's direction
 /// vanishes (a pole) the tangent plane is spanned by S_v and ∂S_v/∂u, so the latter stands in
-/// for S_u: otherwise half of the pole's tangent plane would go unchecked.
+/// for S_u: otherwise half of the pole's tangent plane would go unchecked. A point held at a
+/// pole or apex (v active there) has no u residual.
 pub(crate) fn residual(e: &Eval, movable: [bool; N], active: [bool; N]) -> f64 {
     let scale = e.cols.iter().map(|c| c.length()).fold(0.0, f64::max);
     (0..N)
@@ -164,6 +165,12 @@ pub(crate) fn residual(e: &Eval, movable: [bool; N], active: [bool; N]) -> f64 {
         .filter_map(|k| {
             let mut col = e.cols[k];
             if col.length() <= 1e-9 * scale && k % 2 == 0 {
+                if active[k + 1] {
+                    // Held at the vertex: its first-order condition (no descent into the face
+                    // along any meridian) was checked when v was made active; at an apex the
+                    // connecting vector lies in a cone of normals, not along one.
+                    return None;
+                }
                 col = if k == 0 { e.pa.duv } else { -e.pb.duv };
             }
             let len = col.length();
