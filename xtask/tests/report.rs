@@ -50,7 +50,7 @@ fn quick_report_writes_every_section_and_figure() {
     // The closed-form scenes are scored against their closed forms: the exact pipeline finds
     // every true contact there (a reduced run still measures real answers).
     let sphere = text
-        .split("### sphere")
+        .split("### sphere_on_sphere")
         .nth(1)
         .expect("a sphere scene section");
     let exact_row = sphere

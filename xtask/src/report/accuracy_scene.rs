@@ -4,7 +4,7 @@
 
 use contact_oracle::{ClosedFormScene, OracleOptions, closed_form, find_contacts};
 use contacts::scene::Scene;
-use geom_param::{DPose3, DVec3, MeshOptions, ObjectDescription, Solid};
+use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectDescription, Solid};
 use std::path::Path;
 
 /// A contact taken as the truth (world frame, mm).
@@ -20,8 +20,10 @@ pub struct TrueContact {
 
 /// A pair of objects, their poses and their true contacts.
 pub struct AccuracyScene {
-    /// Short name used in tables and figure file names.
+    /// Name used in tables.
     pub name: String,
+    /// File-name form of the name: lowercase letters, digits and '-'.
+    pub slug: String,
     /// Object A.
     pub a: ObjectDescription,
     /// Placement of A.
@@ -89,6 +91,7 @@ pub fn paper_scene(root: &Path, name: &str) -> Result<AccuracyScene, String> {
     let check = &oracle.cross_check;
     Ok(AccuracyScene {
         name: name.to_string(),
+        slug: slug(name),
         a: oa.description.clone(),
         pose_a: oa.pose,
         b: ob.description.clone(),
@@ -154,6 +157,7 @@ pub fn closed_form_scene(scene: ClosedFormScene) -> Result<AccuracyScene, String
         })
     });
     Ok(AccuracyScene {
+        slug: slug(&scene.name),
         name: scene.name,
         a: scene.a,
         pose_a: scene.pose_a,
@@ -165,13 +169,30 @@ pub fn closed_form_scene(scene: ClosedFormScene) -> Result<AccuracyScene, String
     })
 }
 
+/// `name` with every run of characters other than ASCII letters and digits replaced by one
+/// '-', lowercased, without leading or trailing '-': "sphere_on_sphere(r1 10)" becomes
+/// "sphere-on-sphere-r1-10".
+fn slug(name: &str) -> String {
+    name.to_ascii_lowercase()
+        .split(|c: char| !c.is_ascii_alphanumeric())
+        .filter(|part| !part.is_empty())
+        .collect::<Vec<_>>()
+        .join("-")
+}
+
 /// The closed-form scenes of the report, all at a gap of `gap` mm.
 #[must_use]
 pub fn closed_form_scenes(gap: f64) -> Vec<ClosedFormScene> {
     let tilted = DVec3::new(0.3, -0.5, 0.81).normalize();
     vec![
-        closed_form::sphere_on_sphere(10.0, 15.0, gap, tilted),
-        closed_form::sphere_in_bowl(8.0, 20.0, gap),
+        closed_form::sphere_on_sphere(
+            10.0,
+            15.0,
+            gap,
+            tilted,
+            [DQuat::from_rotation_x(0.4), DQuat::from_rotation_y(-0.7)],
+        ),
+        closed_form::sphere_in_bowl(8.0, 20.0, gap, 0.3, 1.1, DQuat::from_rotation_z(0.5)),
         closed_form::crossed_cylinders(5.0, 8.0, gap, 60.0),
         closed_form::torus_on_plane(20.0, 4.0, 0.3, gap),
     ]

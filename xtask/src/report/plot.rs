@@ -27,6 +27,17 @@ pub const FLOOR: f64 = 1e-16;
 
 const PANEL_SIZE: (u32, u32) = (560, 420);
 
+/// Series colours, in order: distinct in print and for the common colour-vision deficiencies
+/// (Okabe-Ito: vermillion, bluish green, orange, blue, reddish purple, sky blue).
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(230, 159, 0),
+    RGBColor(0, 114, 178),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
+];
+
 /// Renders `panels` side by side, log-log, as an SVG document.
 ///
 /// # Errors
@@ -86,7 +97,7 @@ fn draw_panel(
         .x_label_formatter(&|v| format!("{v}"))
         .draw()?;
     for (i, series) in panel.series.iter().enumerate() {
-        let colour = Palette99::pick(i).to_rgba();
+        let colour = PALETTE[i % PALETTE.len()].to_rgba();
         let points: Vec<(f64, f64)> = series
             .points
             .iter()
@@ -107,7 +118,7 @@ fn draw_panel(
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(SeriesLabelPosition::MiddleLeft)
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .draw()?;
