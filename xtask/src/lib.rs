@@ -3,6 +3,8 @@
 pub mod obj;
 pub mod paper_objects;
 pub mod scenes;
+pub mod settle;
+pub mod soak;
 
 use geom_param::MeshOptions;
 use std::path::{Path, PathBuf};
