@@ -17,6 +17,8 @@ pub enum GapKind {
     Penetrating,
     /// Gap in [delta1, 0): overlapping, but still a contact.
     Overlap,
+    /// Gap in [-1e-9, 1e-9] mm: an exact touch, to rounding.
+    Touching,
     /// Gap in [0, delta2]: a contact.
     Contact,
     /// Gap in (delta2, 1.5 delta2]: just separated.
@@ -33,6 +35,7 @@ impl GapKind {
         match self {
             Self::Penetrating => "penetrating",
             Self::Overlap => "overlap",
+            Self::Touching => "touching",
             Self::Contact => "contact",
             Self::Separated => "separated",
             Self::TwoContacts => "two-contacts",
@@ -78,10 +81,11 @@ fn bounding_sphere(model: &ObjectModel) -> Sphere {
 }
 
 /// Share of each gap kind, in percent (sums to 100).
-const KIND_PERCENT: [(GapKind, u64); 5] = [
+const KIND_PERCENT: [(GapKind, u64); 6] = [
     (GapKind::Penetrating, 15),
     (GapKind::Overlap, 15),
-    (GapKind::Contact, 35),
+    (GapKind::Touching, 10),
+    (GapKind::Contact, 25),
     (GapKind::Separated, 15),
     (GapKind::TwoContacts, 20),
 ];
@@ -89,8 +93,11 @@ const KIND_PERCENT: [(GapKind, u64); 5] = [
 /// Attempts at a line of approach that meets A before a seed gives up.
 const ATTEMPTS: usize = 8;
 
+/// Half-width of the touching gaps (mm).
+const TOUCHING: f64 = 1e-9;
+
 /// Largest tilt tried for a second contact (rad).
-const MAX_TILT: f64 = 0.8;
+const MAX_TILT: f64 = 1.5;
 
 /// Generates poses of B against A.
 pub struct PoseGenerator<'p> {
@@ -119,11 +126,11 @@ impl<'p> PoseGenerator<'p> {
     /// The pose of `seed`: B gets a uniform random rotation; a random line (direction uniform
     /// on the sphere, offset uniform over a disc of radius 0.7 x the smaller bounding radius
     /// about A's centre) brings B's bounding-sphere centre towards A's from where the spheres
-    /// just touch, and [`Settler::touch`] stops it at distance 0. Then:
-    /// a gap kind is drawn ([`KIND_PERCENT`]); for a single gap g, B moves by g along the
-    /// touching contact's normal (which keeps that critical pair at exactly g); for two contacts,
+    /// just touch, and [`Settler::touch`] stops it at the middle of the band g0. Then:
+    /// a gap kind is drawn ([`KIND_PERCENT`]); for a single gap g, B moves by g - g0 along the
+    /// contact's normal (which keeps that critical pair at exactly g); for two contacts,
     /// B moves to g1 and turns about a random axis normal to the contact until a second contact
-    /// reaches g2 (falling back to the single contact at g1 if none comes within 0.8 rad).
+    /// reaches g2 (falling back to the single contact at g1 if none comes within 1.5 rad).
     ///
     /// # Errors
     /// A message when no line of [`ATTEMPTS`] meets A (does not happen for the paper objects).
@@ -162,10 +169,11 @@ impl<'p> PoseGenerator<'p> {
         let gap = match kind {
             GapKind::Penetrating => rng.uniform(3.0 * d1, d1),
             GapKind::Overlap => rng.uniform(d1, 0.0),
+            GapKind::Touching => rng.uniform(-TOUCHING, TOUCHING),
             GapKind::Contact | GapKind::TwoContacts => rng.uniform(0.0, d2),
             GapKind::Separated => rng.uniform(d2, 1.5 * d2) + f64::EPSILON * d2,
         };
-        let single = translated(&touched, normal * gap);
+        let single = translated(&touched, normal * (gap - self.touch_gap()));
         if kind != GapKind::TwoContacts {
             return Ok(SoakPose {
                 seed,
@@ -198,8 +206,14 @@ impl<'p> PoseGenerator<'p> {
         }
     }
 
-    /// B at a random rotation, touching A (minimum distance 0) along a random line, and the
-    /// line's direction.
+    /// The gap the touch stops at (mm): the middle of the band, where the pipeline reports
+    /// distances with no ambiguity about the state.
+    fn touch_gap(&self) -> f64 {
+        0.5 * (self.options.delta1 + self.options.delta2)
+    }
+
+    /// B at a random rotation, its minimum distance to A at [`Self::touch_gap`] along a random
+    /// line, and the line's direction.
     fn touch_at_random(&mut self, rng: &mut SplitMix64) -> Result<(DPose3, DVec3), String> {
         let (a, b) = (self.sphere_a, self.sphere_b);
         for _ in 0..ATTEMPTS {
@@ -218,7 +232,10 @@ impl<'p> PoseGenerator<'p> {
             if min_distance(&self.settler.try_query(&start)?) <= 0.0 {
                 continue;
             }
-            if let Ok(pose) = self.settler.touch(&start, approach, 0.0, 2.0 * reach) {
+            if let Ok(pose) = self
+                .settler
+                .touch(&start, approach, self.touch_gap(), 2.0 * reach)
+            {
                 return Ok((pose, approach));
             }
         }

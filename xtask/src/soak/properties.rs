@@ -74,8 +74,8 @@ pub struct ContactTolerances {
     /// Distance (mm): `error_estimate` plus rounding.
     pub distance: f64,
     /// Normal (rad): 1e-9 + the local curvature of both features x the point error, plus, when
-    /// either point is on an edge or vertex (the normal is then the direction of the connecting
-    /// vector), the point error over |distance|.
+    /// A's point is on an edge or vertex (the normal is then the direction of the connecting
+    /// vector), twice the point error over |distance|.
     pub normal: f64,
 }
 
@@ -92,9 +92,9 @@ impl ContactTolerances {
         };
         let point = pe + ROUNDING * coord;
         let kappa = local_curvature(a, &c.location_a) + local_curvature(b, &c.location_b);
-        let on_faces = matches!(c.location_a, FeatureLocation::Face { .. })
-            && matches!(c.location_b, FeatureLocation::Face { .. });
-        let direction = if on_faces {
+        // The pipeline's normal is A's outward normal when A's point is on a face, otherwise
+        // the direction of the connecting vector, good to the point error over the distance.
+        let direction = if matches!(c.location_a, FeatureLocation::Face { .. }) {
             0.0
         } else {
             2.0 * point / c.distance.abs()
@@ -308,7 +308,8 @@ impl<'p> PropertyChecker<'p> {
                         fail(
                             Property::SurfaceNormal,
                             format!(
-                                "normal {:e} rad outside {which}'s cone {cone:?} (tol {:e}) at {:?}",
+                                "d {:e}: normal {:e} rad outside {which}'s cone {cone:?} (tol {:e}) at {:?}",
+                                c.distance,
                                 excess,
                                 tol.normal,
                                 if which == "a" {
