@@ -34,8 +34,8 @@ fn soak(args: &[String]) -> Result<bool, String> {
             .ok_or(format!("bad replay `{what}`: expected a-b:SEED"))?;
         let (a, b) = parse_pair(pair)?;
         let seed = seed.parse().map_err(|e| format!("bad seed: {e}"))?;
-        let stats = replay(&a, &b, seed)?;
-        println!("{stats:#?}");
+        let (pose, stats) = replay(&a, &b, seed)?;
+        println!("{pose:#?}\n{stats:#?}");
         return Ok(stats.failure_count() == 0);
     }
     let mut config = SoakConfig {

@@ -150,13 +150,14 @@ pub fn prepare_objects(
 }
 
 /// Runs one pose: generates it, queries, checks the properties (and the oracle), and tallies.
+/// Returns the pose (`None` when the generator failed).
 fn run_pose(
     pipeline: &ContactPipeline,
     a: &PreparedObject,
     b: &PreparedObject,
     seed: u64,
     stats: &mut PairStats,
-) -> Result<(), String> {
+) -> Result<Option<SoakPose>, String> {
     stats.poses += 1;
     let mut generator = PoseGenerator::new(pipeline, a, b);
     let pose = match generator.generate(seed) {
@@ -169,7 +170,7 @@ fn run_pose(
                 what: "generator".into(),
                 detail: e,
             });
-            return Ok(());
+            return Ok(None);
         }
     };
     *stats.kinds.entry(pose.kind).or_default() += 1;
@@ -191,7 +192,7 @@ fn run_pose(
     let mut rng = SplitMix64::new(seed ^ 0x005E_ED0F_5A4E);
     let failures = PropertyChecker::new(pipeline, a, b).check(&pose.pose_b, &report, &mut rng)?;
     stats.add_properties(seed, &pose, failures);
-    Ok(())
+    Ok(Some(pose))
 }
 
 /// Runs the soak. `progress` is called after each pair with its tallies.
@@ -241,15 +242,16 @@ pub fn run_soak(
     Ok(summary)
 }
 
-/// Runs the single pose `seed` of pair (a, b): to reproduce a failure.
+/// Runs the single pose `seed` of pair (a, b), to reproduce a failure: the pose (`None` if the
+/// generator failed) and its tallies.
 ///
 /// # Errors
 /// As [`run_soak`].
-pub fn replay(a: &str, b: &str, seed: u64) -> Result<PairStats, String> {
+pub fn replay(a: &str, b: &str, seed: u64) -> Result<(Option<SoakPose>, PairStats), String> {
     let pipeline = ContactPipeline::new(ContactOptions::default()).map_err(|e| e.to_string())?;
     let objects = prepare_objects(&pipeline)?;
     let get = |n: &str| objects.get(n).ok_or(format!("unknown object {n}"));
     let mut stats = PairStats::default();
-    run_pose(&pipeline, get(a)?, get(b)?, seed, &mut stats)?;
-    Ok(stats)
+    let pose = run_pose(&pipeline, get(a)?, get(b)?, seed, &mut stats)?;
+    Ok((pose, stats))
 }
