@@ -2,7 +2,9 @@
 //! B at the pose given, default `ContactOptions`) and a comment on what failed. The ones still
 //! failing are `#[ignore]`d with the reason; see docs/ROBUSTNESS.md ("Soak").
 
-use contact_pipeline::{ContactOptions, ContactPipeline, PairReport, PreparedObject, QueryScratch};
+use contact_pipeline::{
+    ContactOptions, ContactPipeline, PairReport, PairState, PreparedObject, QueryScratch,
+};
 use geom_param::{DPose3, DQuat, DVec3};
 use std::collections::BTreeMap;
 use xtask::soak::normal_cone::normal_cone;
@@ -35,15 +37,17 @@ fn query(
 }
 
 /// Found by the flip property (paperweight-pencil, seed 4415940930031423605 of
-/// `cargo xtask soak 36 --seed 1`): B was set 1.672e-3 mm into A along the normal of a touching
-/// contact, and the pipeline reports a single contact at distance 2.5e-15 between the
-/// paperweight's face 1 and the pencil's edge 0. The two surfaces cross there: the face's
-/// normal is not in the edge's normal cone (the arc between its two faces' normals), so the
-/// point is on the intersection curve, not a touch. Stage 3 restarts into the penetration solve
-/// from a crossing of two faces (`exact_refine::newton::crossing_restart`) but not from an edge
-/// crossing a face, and the zero-distance point passes as a local minimum of |P_a - P_b|.
+/// `cargo xtask soak 36 --seed 1`): B was set 1.672e-3 mm into A along the normal of a
+/// face-face contact, and the pipeline reported a single contact at distance 2.5e-15 between
+/// the paperweight's face 1 and the pencil's edge 0 (a smooth edge). The surfaces cross there:
+/// the face's normal is 0.17 rad off the pencil's normal, so the point is on the intersection
+/// curve, not a touch. Stage 3 restarted into the penetration solve from a crossing of two
+/// faces but not from an edge crossing a face, and the zero-distance point passed as a local
+/// minimum of |P_a - P_b|. Fixed in `exact_refine::newton::crossing_restart`: an edge's point
+/// is a touch only when the other face's normal, negated, lies in the arc of its two faces'
+/// normals; otherwise the solve restarts on the steeper face. Now both orders find the
+/// penetration the pose was built with.
 #[test]
-#[ignore = "Stage 3 takes an edge-face crossing for a contact at distance 0 (no restart for edges)"]
 fn an_edge_crossing_a_face_is_not_a_contact() {
     let (pipeline, objects) = setup();
     let pose_b = pose(
@@ -56,27 +60,25 @@ fn an_edge_crossing_a_face_is_not_a_contact() {
         ],
     );
     let (a, b) = (&objects["paperweight"], &objects["pencil"]);
-    let report = query(
-        &pipeline,
-        a,
-        &DPose3::IDENTITY,
-        b,
-        &pose_b,
-        &mut QueryScratch::default(),
-    );
-    for c in &report.contacts {
-        // At a touch both normal cones hold the normal (A's) and its negation (B's).
-        let cone_a = normal_cone(&a.model.solid, &c.location_a).expect("cone at A");
-        let cone_b = normal_cone(&b.model.solid, &c.location_b)
-            .expect("cone at B")
-            .rotated(pose_b.rotation);
-        assert!(cone_a.excess(c.normal) < 1e-6, "{c:?}");
-        assert!(
-            cone_b.excess(-c.normal) < 1e-6,
-            "contact at d = {:e}: -normal is {:e} rad outside B's normal cone {cone_b:?}",
-            c.distance,
-            cone_b.excess(-c.normal)
-        );
+    let mut scratch = QueryScratch::default();
+    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
+    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    for (report, first, pose_first, second, pose_second) in [
+        (&ab, a, DPose3::IDENTITY, b, pose_b),
+        (&ba, b, pose_b, a, DPose3::IDENTITY),
+    ] {
+        assert_eq!(report.state, PairState::Penetration, "{report:?}");
+        for c in &report.contacts {
+            // Any contact kept must be a touch: the normal in both normal cones.
+            let cone_a = normal_cone(&first.model.solid, &c.location_a)
+                .expect("cone at A")
+                .rotated(pose_first.rotation);
+            let cone_b = normal_cone(&second.model.solid, &c.location_b)
+                .expect("cone at B")
+                .rotated(pose_second.rotation);
+            assert!(cone_a.excess(c.normal) < 1e-6, "{c:?}");
+            assert!(cone_b.excess(-c.normal) < 1e-6, "{c:?}");
+        }
     }
 }
 
