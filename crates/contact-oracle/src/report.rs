@@ -1,0 +1,87 @@
+//! What the oracle returns.
+
+use geom_param::{DVec3, FaceId};
+
+/// One local minimum of distance (distance >= 0) or one penetration witness (distance < 0),
+/// in the world frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OracleContact {
+    /// Point on A's surface (world, mm).
+    pub point_a: DVec3,
+    /// Point on B's surface (world, mm): `point_a + distance * normal`.
+    pub point_b: DVec3,
+    /// Signed distance (mm): positive apart, negative for a penetration witness (the depth).
+    pub distance: f64,
+    /// A's unit outward normal at `point_a` (world).
+    pub normal: DVec3,
+    /// A's face holding `point_a`.
+    pub face_a: FaceId,
+    /// (u, v) of `point_a` on `face_a`.
+    pub params_a: [f64; 2],
+    /// B's face holding `point_b`.
+    pub face_b: FaceId,
+    /// (u, v) of `point_b` on `face_b`.
+    pub params_b: [f64; 2],
+    /// Stationarity residual (mm): the largest tangential component of `point_b - point_a`
+    /// along the free parameter directions of either face.
+    pub residual: f64,
+    /// Newton iterations spent in the final polish.
+    pub iterations: u32,
+}
+
+/// How the pair stands against a contact band [delta1, delta2].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OracleState {
+    /// Nothing at distance <= delta2.
+    Separated,
+    /// The smallest distance lies in [delta1, delta2].
+    Contact,
+    /// The smallest distance is below delta1.
+    Penetration,
+}
+
+/// Agreement between the runs at two sample spacings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CrossCheck {
+    /// Contacts of either run with no partner in the other (points within 1e-6 x size).
+    pub unmatched: usize,
+    /// Largest |distance difference| over matched pairs (mm).
+    pub max_distance_difference: f64,
+    /// Largest point difference (either side) over matched pairs (mm).
+    pub max_point_difference: f64,
+}
+
+/// Everything the oracle found between two posed solids.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OracleReport {
+    /// All local minima and penetration witnesses with distance <= reach, sorted by distance.
+    pub contacts: Vec<OracleContact>,
+    /// Smallest signed distance among `contacts`; +inf when there is none.
+    pub min_distance: f64,
+    /// Samples used on both surfaces in the primary run.
+    pub samples: usize,
+    /// How well the primary run agrees with the run at the finer spacing.
+    pub cross_check: CrossCheck,
+}
+
+impl OracleReport {
+    /// Penetration when `min_distance < delta1`, contact when it lies in [delta1, delta2],
+    /// separated otherwise.
+    #[must_use]
+    pub fn state(&self, delta1: f64, delta2: f64) -> OracleState {
+        if self.min_distance < delta1 {
+            OracleState::Penetration
+        } else if self.min_distance <= delta2 {
+            OracleState::Contact
+        } else {
+            OracleState::Separated
+        }
+    }
+
+    /// The contacts with delta1 <= distance <= delta2.
+    pub fn in_band(&self, delta1: f64, delta2: f64) -> impl Iterator<Item = &OracleContact> {
+        self.contacts
+            .iter()
+            .filter(move |c| c.distance >= delta1 && c.distance <= delta2)
+    }
+}

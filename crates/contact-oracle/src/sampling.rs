@@ -1,0 +1,310 @@
+//! Dense sampling of a posed solid's faces: a (u, v) grid per face whose world spacing is about
+//! `spacing` (sized from |S_u| and |S_v|), restricted to the parts near a region of interest.
+//!
+//! Two passes. The coarse pass cuts every face into patches about `COARSE` spacings across
+//! and bounds the solid (a surface point lies within one patch diameter of a patch corner).
+//! The fine pass samples only the patches within reach of the other solid's box. Rows include
+//! the face's boundary (edges and poles are sampled); a pole row holds one sample per patch.
+
+use crate::kdtree::KdTree;
+use crate::posed::PosedSolid;
+use geom_param::{FaceId, Solid};
+use glam::DVec3;
+
+/// Coarse patches are about this many fine spacings across.
+const COARSE: f64 = 8.0;
+/// Probe grid per face for the largest parametric speeds (|S_u|, |S_v|).
+const PROBE: usize = 16;
+/// Most coarse patches per face direction.
+const MAX_PATCHES: usize = 256;
+/// Safety factor on the probed speeds (a Bezier's speed peaks between probes).
+const SPEED_SAFETY: f64 = 1.25;
+
+/// One surface sample in the world frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Sample {
+    pub face: FaceId,
+    pub uv: [f64; 2],
+    pub point: DVec3,
+    /// Unit outward normal, zero where the face has no tangent plane (an apex).
+    pub normal: DVec3,
+}
+
+/// An axis-aligned box in the world frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Aabb {
+    pub lo: DVec3,
+    pub hi: DVec3,
+}
+
+impl Aabb {
+    pub fn empty() -> Self {
+        Self {
+            lo: DVec3::splat(f64::INFINITY),
+            hi: DVec3::splat(f64::NEG_INFINITY),
+        }
+    }
+
+    pub fn add(&mut self, p: DVec3) {
+        self.lo = self.lo.min(p);
+        self.hi = self.hi.max(p);
+    }
+
+    pub fn expanded(&self, by: f64) -> Self {
+        Self {
+            lo: self.lo - DVec3::splat(by),
+            hi: self.hi + DVec3::splat(by),
+        }
+    }
+
+    pub fn distance(&self, p: DVec3) -> f64 {
+        (self.lo - p).max(p - self.hi).max(DVec3::ZERO).length()
+    }
+
+    pub fn extent(&self) -> f64 {
+        (self.hi - self.lo).max_element()
+    }
+}
+
+/// A face cut into coarse patches.
+#[derive(Debug)]
+pub(crate) struct CoarseFace {
+    face: FaceId,
+    us: Vec<f64>,
+    vs: Vec<f64>,
+    /// World points at (us[i], vs[j]), row-major by v.
+    corners: Vec<DVec3>,
+    /// Largest patch diameter on this face (mm).
+    diameter: f64,
+}
+
+/// The coarse pass over a whole solid.
+#[derive(Debug)]
+pub(crate) struct CoarseSolid {
+    pub faces: Vec<CoarseFace>,
+    /// Bounds every surface point.
+    pub bounds: Aabb,
+    /// Every patch corner, and a tree over them.
+    corners: KdTree,
+    /// Every surface point lies within this distance of a corner (mm).
+    slack: f64,
+}
+
+impl CoarseSolid {
+    /// A lower bound on the distance from `p` to the solid's surface, within `slack` of it.
+    fn distance_bound(&self, p: DVec3, limit: f64) -> Option<f64> {
+        self.corners
+            .nearest_within(p, limit + self.slack)
+            .map(|(_, d)| (d - self.slack).max(0.0))
+    }
+}
+
+/// Largest |S_u| and |S_v| over a probe grid of the face (object frame; the pose does not
+/// change lengths).
+fn speeds(solid: &Solid, face: FaceId) -> (f64, f64) {
+    let [du, dv] = solid.face(face).surface.domain();
+    let mut out = (0.0_f64, 0.0_f64);
+    for i in 0..=PROBE {
+        for j in 0..=PROBE {
+            let u = du.min + du.span() * i as f64 / PROBE as f64;
+            let v = dv.min + dv.span() * j as f64 / PROBE as f64;
+            let s = solid.eval_face(face, u, v);
+            out = (out.0.max(s.du.length()), out.1.max(s.dv.length()));
+        }
+    }
+    out
+}
+
+/// Largest side of the object-frame bounding box of a solid's probe points (mm).
+pub(crate) fn object_extent(solid: &Solid) -> f64 {
+    let mut bounds = Aabb::empty();
+    for f in 0..solid.faces.len() {
+        let face = FaceId(f as u32);
+        let [du, dv] = solid.face(face).surface.domain();
+        for i in 0..=PROBE {
+            for j in 0..=PROBE {
+                let u = du.min + du.span() * i as f64 / PROBE as f64;
+                let v = dv.min + dv.span() * j as f64 / PROBE as f64;
+                bounds.add(solid.eval_face(face, u, v).point);
+            }
+        }
+    }
+    bounds.extent()
+}
+
+fn grid(min: f64, span: f64, n: usize) -> Vec<f64> {
+    (0..=n).map(|k| min + span * k as f64 / n as f64).collect()
+}
+
+/// Pieces needed to cover `span` at `speed` mm per unit with pieces of length `step`.
+fn pieces(span: f64, speed: f64, step: f64, cap: usize) -> usize {
+    let n = (span * speed * SPEED_SAFETY / step).ceil();
+    if n.is_finite() {
+        (n as usize).clamp(1, cap)
+    } else {
+        cap
+    }
+}
+
+/// The coarse pass. `None` when some face evaluates to non-finite points.
+pub(crate) fn coarse(posed: &PosedSolid, spacing: f64) -> Option<CoarseSolid> {
+    let solid = posed.solid;
+    let mut faces = Vec::with_capacity(solid.faces.len());
+    let mut bounds = Aabb::empty();
+    for f in 0..solid.faces.len() {
+        let face = FaceId(f as u32);
+        let [du, dv] = solid.face(face).surface.domain();
+        let (su, sv) = speeds(solid, face);
+        let step = COARSE * spacing;
+        let us = grid(du.min, du.span(), pieces(du.span(), su, step, MAX_PATCHES));
+        let vs = grid(dv.min, dv.span(), pieces(dv.span(), sv, step, MAX_PATCHES));
+        let mut corners = Vec::with_capacity(us.len() * vs.len());
+        for &v in &vs {
+            for &u in &us {
+                corners.push(posed.eval(face, u, v).point);
+            }
+        }
+        if corners.iter().any(|p| !p.is_finite()) {
+            return None;
+        }
+        let nu = us.len();
+        let mut diameter = 0.0_f64;
+        for j in 0..vs.len() - 1 {
+            for i in 0..nu - 1 {
+                let c = [
+                    corners[j * nu + i],
+                    corners[j * nu + i + 1],
+                    corners[(j + 1) * nu + i],
+                    corners[(j + 1) * nu + i + 1],
+                ];
+                diameter = diameter
+                    .max(c[0].distance(c[3]))
+                    .max(c[1].distance(c[2]))
+                    .max(c[0].distance(c[1]))
+                    .max(c[0].distance(c[2]));
+            }
+        }
+        for &p in &corners {
+            bounds.add(p);
+        }
+        faces.push(CoarseFace {
+            face,
+            us,
+            vs,
+            corners,
+            diameter,
+        });
+    }
+    let slack = faces.iter().map(|f| f.diameter).fold(0.0, f64::max);
+    let all: Vec<DVec3> = faces
+        .iter()
+        .flat_map(|f| f.corners.iter().copied())
+        .collect();
+    Some(CoarseSolid {
+        faces,
+        bounds: bounds.expanded(slack),
+        corners: KdTree::new(&all),
+        slack,
+    })
+}
+
+/// Fine samples of the patches that may come within `keep_distance` of `other`'s surface, at about
+/// `spacing`; the grid is shifted by `offset` (fractions of a fine step, in [0, 1)) so two runs
+/// can sample different points. Err(estimated count) when the count would exceed `budget`.
+pub(crate) fn fine(
+    posed: &PosedSolid,
+    coarse: &CoarseSolid,
+    other: &CoarseSolid,
+    keep_distance: f64,
+    spacing: f64,
+    offset: f64,
+    budget: usize,
+) -> Result<Vec<Sample>, usize> {
+    // Plan first (patch list with sub-grid sizes), so the budget is checked before allocating.
+    let mut plan = Vec::new();
+    let mut needed = 0_usize;
+    for cf in &coarse.faces {
+        let nu = cf.us.len();
+        let [du, dv] = posed.solid.face(cf.face).surface.domain();
+        for j in 0..cf.vs.len() - 1 {
+            for i in 0..nu - 1 {
+                let c = [
+                    cf.corners[j * nu + i],
+                    cf.corners[j * nu + i + 1],
+                    cf.corners[(j + 1) * nu + i],
+                    cf.corners[(j + 1) * nu + i + 1],
+                ];
+                // A patch point is within one diameter of a corner.
+                let limit = keep_distance + cf.diameter;
+                let near = c.iter().any(|&p| {
+                    other.bounds.distance(p) <= limit
+                        && other.distance_bound(p, limit).is_some_and(|d| d <= limit)
+                });
+                if !near {
+                    continue;
+                }
+                let (u0, u1, v0, v1) = (cf.us[i], cf.us[i + 1], cf.vs[j], cf.vs[j + 1]);
+                let mut sv = 0.0_f64;
+                let mut su = 0.0_f64;
+                for (u, v) in [
+                    (u0, v0),
+                    (u1, v0),
+                    (u0, v1),
+                    (u1, v1),
+                    (0.5 * (u0 + u1), 0.5 * (v0 + v1)),
+                ] {
+                    let s = posed.eval(cf.face, u, v);
+                    sv = sv.max(s.dv.length());
+                    su = su.max(s.du.length());
+                }
+                let mv = pieces(v1 - v0, sv, spacing, 1 << 16);
+                let mu = pieces(u1 - u0, su, spacing, 1 << 16);
+                needed = needed.saturating_add((mv + 1).saturating_mul(mu + 1));
+                let last_u = !du.periodic && i + 2 == nu;
+                let last_v = !dv.periodic && j + 2 == cf.vs.len();
+                plan.push((cf.face, u0, u1, v0, v1, mv, last_u, last_v));
+            }
+        }
+    }
+    if needed > budget {
+        return Err(needed);
+    }
+    let mut out = Vec::with_capacity(needed);
+    for (face, u0, u1, v0, v1, mv, last_u, last_v) in plan {
+        let rows = if last_v { mv + 1 } else { mv };
+        for t in 0..rows {
+            // The offset shifts interior rows only: the boundary rows stay on the edges.
+            let frac = if t == 0 || t == mv {
+                t as f64
+            } else {
+                t as f64 + offset - 0.5 * offset
+            };
+            let v = v0 + (v1 - v0) * frac / mv as f64;
+            let row = posed.eval(face, 0.5 * (u0 + u1), v);
+            let su = row
+                .du
+                .length()
+                .max(posed.eval(face, u0, v).du.length())
+                .max(posed.eval(face, u1, v).du.length());
+            let mu = pieces(u1 - u0, su, spacing, 1 << 16);
+            let cols = if last_u { mu + 1 } else { mu };
+            for s in 0..cols {
+                let frac = if last_u && s == mu {
+                    s as f64
+                } else {
+                    s as f64 + offset
+                };
+                let u = u0 + (u1 - u0) * (frac / mu as f64).min(1.0);
+                let [u, v] = posed.normalize(face, [u, v]);
+                let p = posed.eval(face, u, v);
+                out.push(Sample {
+                    face,
+                    uv: [u, v],
+                    point: p.point,
+                    normal: posed.normal(face, u, v).unwrap_or(DVec3::ZERO),
+                });
+            }
+        }
+    }
+    Ok(out)
+}
