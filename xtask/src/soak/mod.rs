@@ -2,6 +2,7 @@
 //! checked against an independent oracle and against properties that need no oracle.
 
 pub mod normal_cone;
+pub mod oracle_check;
 pub mod pose_generator;
 pub mod properties;
 pub mod rng;

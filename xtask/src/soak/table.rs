@@ -27,6 +27,7 @@ pub fn totals(summary: &SoakSummary) -> PairStats {
         total.worst_point.update_from(s.worst_point);
         total.cross_check += s.cross_check;
         total.generator_failures += s.generator_failures;
+        total.oracle_limits += s.oracle_limits;
     }
     total
 }
@@ -54,7 +55,7 @@ fn row(out: &mut String, name: &str, s: &PairStats) {
     let props: usize = s.property_failures.values().sum();
     let _ = writeln!(
         out,
-        "{name:<22} {:>6} {:>5} {:>5} {:>5} {:>6} {:>6} {:>6} {:>6} {:>6} {:>9.2e} {:>9.2e} {:>6} {:>4}",
+        "{name:<22} {:>6} {:>5} {:>5} {:>5} {:>6} {:>6} {:>6} {:>6} {:>6} {:>9.2e} {:>9.2e} {:>6} {:>6} {:>4}",
         s.poses,
         s.states[0],
         s.states[1],
@@ -67,6 +68,7 @@ fn row(out: &mut String, name: &str, s: &PairStats) {
         s.worst_distance.value,
         s.worst_point.value,
         s.cross_check,
+        s.oracle_limits,
         s.generator_failures,
     );
 }
@@ -77,7 +79,7 @@ pub fn render(summary: &SoakSummary) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6} {:>6} {:>6} {:>6} {:>6} {:>9} {:>9} {:>6} {:>4}",
+        "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6} {:>6} {:>6} {:>6} {:>6} {:>9} {:>9} {:>6} {:>6} {:>4}",
         "pair (A-B)",
         "poses",
         "sep",
@@ -91,6 +93,7 @@ pub fn render(summary: &SoakSummary) -> String {
         "worst d",
         "worst p",
         "xcheck",
+        "olimit",
         "gen"
     );
     for ((a, b), s) in &summary.pairs {
@@ -130,9 +133,14 @@ pub fn render(summary: &SoakSummary) -> String {
     }
     for ((a, b), s) in &summary.pairs {
         for f in &s.failures {
+            let tag = if f.what == "oracle-limit" {
+                "NOTE"
+            } else {
+                "FAIL"
+            };
             let _ = writeln!(
                 out,
-                "FAIL {a}-{b}:{} {}: {}{}",
+                "{tag} {a}-{b}:{} {}: {}{}",
                 f.seed,
                 f.what,
                 f.detail,
