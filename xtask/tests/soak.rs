@@ -1,6 +1,6 @@
 //! The CI-sized soak: 7 random near-contact poses for each of the 36 ordered pairs of the paper
-//! objects (252 poses), with every oracle-free property (and the oracle comparison) of
-//! `cargo xtask soak`. The full run is `cargo xtask soak 10000`.
+//! objects (252 poses), with every oracle-free property and the comparison with
+//! `contact-oracle` of `cargo xtask soak`. The full run is `cargo xtask soak 10000`.
 
 use std::sync::OnceLock;
 use xtask::soak::properties::Property;
@@ -26,7 +26,7 @@ fn summary() -> &'static SoakSummary {
     })
 }
 
-/// Every failure of the run is a failure of the test.
+/// Every failure of the run (missed, false, state, property) is a failure of the test.
 #[test]
 #[ignore = "known pipeline failures (edge-face crossings taken for contacts, second-order test \
             at |d| ~ 1e-9, divergence from seeds on face boundaries): docs/ROBUSTNESS.md, Soak"]

@@ -59,6 +59,8 @@ pub struct PropertyFailure {
 
 /// Relative rounding floor: 64 ε.
 const ROUNDING: f64 = 64.0 * f64::EPSILON;
+/// Largest flip eps, relative to the band width: beyond it the flip is not tested.
+const FLIP_MAX_EPS: f64 = 0.1;
 /// Angle floor (rad) for normals built from coordinates of ~1e2 mm.
 const ANGLE_FLOOR: f64 = 1e-9;
 /// The pipeline's merge tolerance relative to the object size: two points this close are one
@@ -330,7 +332,8 @@ impl<'p> PropertyChecker<'p> {
     /// points moved with B) at delta1 + eps. Translating B along n keeps the closest pair a
     /// critical pair at distance d + s exactly, and the minimum distance is 1-Lipschitz in the
     /// translation, so nothing else can come below delta1 + eps. eps = max(100 x the
-    /// distance error estimate, 1e-9 x size).
+    /// distance error estimate, 1e-9 x size); skipped when eps exceeds a tenth of the band (the
+    /// contact's distance is then too uncertain to test the flip).
     fn check_flip(
         &mut self,
         pose_b: &DPose3,
@@ -347,8 +350,13 @@ impl<'p> PropertyChecker<'p> {
         else {
             return Ok(());
         };
-        let delta1 = self.pipeline.options().delta1;
+        let options = self.pipeline.options();
+        let delta1 = options.delta1;
         let eps = (100.0 * c.diagnostics.error_estimate).max(1e-9 * self.size);
+        if eps > FLIP_MAX_EPS * (options.delta2 - delta1) {
+            // The distance is too uncertain for delta1 +- eps to test anything.
+            return Ok(());
+        }
         let shift = |s: f64| DPose3 {
             rotation: pose_b.rotation,
             translation: pose_b.translation + c.normal * s,
