@@ -25,8 +25,9 @@ pub struct SoakConfig {
 /// [`all_pairs`]) under base seed `base`.
 #[must_use]
 pub fn pose_seed(base: u64, pair: usize, k: usize) -> u64 {
-    let mut rng = SplitMix64::new(base ^ ((pair as u64) << 40) ^ k as u64);
-    rng.next_u64()
+    // The base is mixed first, so that runs with nearby base seeds share no poses.
+    let mixed = SplitMix64::new(base).next_u64();
+    SplitMix64::new(mixed ^ ((pair as u64) << 40) ^ k as u64).next_u64()
 }
 
 /// Every ordered pair of the six paper objects, A first.
