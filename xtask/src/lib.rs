@@ -5,6 +5,8 @@ pub mod random;
 pub mod paper_objects;
 pub mod report;
 pub mod scenes;
+pub mod settle;
+pub mod soak;
 
 use geom_param::MeshOptions;
 use std::path::{Path, PathBuf};

@@ -1,11 +1,18 @@
-//! Project automation: `cargo xtask fixtures` writes `fixtures/`; `cargo xtask report` measures
-//! and writes `docs/REPORT.md` with its figures.
+//! Project automation. `cargo xtask fixtures` writes `fixtures/`; `cargo xtask report` measures
+//! and writes `docs/REPORT.md` with its figures (see `xtask::report`); `cargo xtask soak N`
+//! runs the random near-contact soak (see `xtask::soak`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Instant;
 use xtask::report::{ReportSettings, write_report};
+use xtask::soak::run::{SoakConfig, replay, run_soak};
+use xtask::soak::table::{render, totals};
 
-const USAGE: &str = "usage: cargo xtask fixtures | cargo xtask report [--quick] [--out DIR]";
+const USAGE: &str = "usage: cargo xtask fixtures\n       \
+cargo xtask report [--quick] [--out DIR]\n       \
+cargo xtask soak N [--seed S] [--pairs a-b,c-d,...]\n       \
+cargo xtask soak --replay a-b:SEED";
 
 fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -14,6 +21,13 @@ fn workspace_root() -> PathBuf {
         .unwrap_or_default()
 }
 
+fn parse_pair(text: &str) -> Result<(String, String), String> {
+    text.split_once('-')
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .ok_or(format!("bad pair `{text}`: expected a-b"))
+}
+
+/// Measures and writes the report (docs/REPORT.md unless `--out DIR`).
 fn report(args: &[String]) -> Result<(), String> {
     let root = workspace_root();
     let mut settings = ReportSettings::full();
@@ -31,15 +45,73 @@ fn report(args: &[String]) -> Result<(), String> {
     Ok(())
 }
 
+/// Runs the soak; Ok(true) when nothing failed.
+fn soak(args: &[String]) -> Result<bool, String> {
+    if let [flag, what] = args
+        && flag == "--replay"
+    {
+        let (pair, seed) = what
+            .split_once(':')
+            .ok_or(format!("bad replay `{what}`: expected a-b:SEED"))?;
+        let (a, b) = parse_pair(pair)?;
+        let seed = seed.parse().map_err(|e| format!("bad seed: {e}"))?;
+        let (pose, stats) = replay(&a, &b, seed)?;
+        println!("{pose:#?}\n{stats:#?}");
+        return Ok(stats.failure_count() == 0);
+    }
+    let mut config = SoakConfig {
+        poses: 0,
+        seed: 1,
+        pairs: Vec::new(),
+    };
+    let mut rest = args.iter();
+    while let Some(arg) = rest.next() {
+        let mut value = || rest.next().ok_or(format!("{arg} needs a value"));
+        match arg.as_str() {
+            "--seed" => config.seed = value()?.parse().map_err(|e| format!("bad seed: {e}"))?,
+            "--pairs" => {
+                config.pairs = value()?
+                    .split(',')
+                    .map(parse_pair)
+                    .collect::<Result<_, _>>()?;
+            }
+            n => config.poses = n.parse().map_err(|_| USAGE.to_string())?,
+        }
+    }
+    if config.poses == 0 {
+        return Err(USAGE.into());
+    }
+    let start = Instant::now();
+    let summary = run_soak(&config, |(a, b), s| {
+        eprintln!(
+            "{a}-{b}: {} poses, {} failures ({:.0} s)",
+            s.poses,
+            s.failure_count(),
+            start.elapsed().as_secs_f64()
+        );
+    })?;
+    print!("{}", render(&summary));
+    let total = totals(&summary);
+    println!(
+        "{} poses in {:.1} s, seed {}",
+        total.poses,
+        start.elapsed().as_secs_f64(),
+        config.seed
+    );
+    Ok(total.failure_count() == 0)
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
-        Some("fixtures") => xtask::write_fixtures(&workspace_root()),
-        Some("report") => report(&args[1..]),
+        Some("fixtures") => xtask::write_fixtures(&workspace_root()).map(|()| true),
+        Some("report") => report(&args[1..]).map(|()| true),
+        Some("soak") => soak(&args[1..]),
         _ => Err(USAGE.to_string()),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::FAILURE,
         Err(message) => {
             eprintln!("xtask: {message}");
             ExitCode::from(2)

@@ -9,15 +9,16 @@
 //! run come a single-contact scene (after the touch), a separated scene (the touch moved back by
 //! 5 mm) and, for the pencil and the bowl, a penetrating scene.
 
-use contact_pipeline::{
-    ContactOptions, ContactPipeline, PairReport, PairState, PreparedObject, QueryScratch,
-};
+use crate::settle::{Settler, TiltSpec, translated};
+use contact_pipeline::{ContactOptions, ContactPipeline};
 use geom_param::{DPose3, DQuat, DVec3, ObjectDescription};
 use serde_json::{Value, json};
 
 /// Gaps of the first and second contact (mm), inside the default band [-0.001, 0.1].
 const FIRST_GAP: f64 = 0.02;
 const SECOND_GAP: f64 = 0.05;
+/// Longest approach tried (mm).
+const MAX_TRAVEL: f64 = 5000.0;
 
 /// How a pair is brought together.
 struct SettleSpec {
@@ -87,191 +88,6 @@ fn specs() -> Vec<SettleSpec> {
     ]
 }
 
-/// Queries of one pair with A at the origin.
-struct Settler {
-    pipeline: ContactPipeline,
-    a: PreparedObject,
-    b: PreparedObject,
-    scratch: QueryScratch,
-}
-
-/// The smallest distance of a report for bisection: -inf when penetrating, +inf when separated.
-fn min_distance(report: &PairReport) -> f64 {
-    match report.state {
-        PairState::Penetration => f64::NEG_INFINITY,
-        PairState::Separated => f64::INFINITY,
-        PairState::Contact => report
-            .contacts
-            .iter()
-            .map(|c| c.distance)
-            .fold(f64::INFINITY, f64::min),
-    }
-}
-
-fn translated(pose: &DPose3, by: DVec3) -> DPose3 {
-    DPose3 {
-        rotation: pose.rotation,
-        translation: pose.translation + by,
-    }
-}
-
-/// `pose` turned by `angle` about the world axis through `pivot`.
-fn turned(pose: &DPose3, pivot: DVec3, axis: DVec3, angle: f64) -> DPose3 {
-    let r = DQuat::from_axis_angle(axis, angle);
-    DPose3 {
-        rotation: (r * pose.rotation).normalize(),
-        translation: pivot + r * (pose.translation - pivot),
-    }
-}
-
-/// Finds x in [lo, hi] with f(x) = target, given f(lo) > target >= f(hi) (f need not be
-/// continuous: it may jump to -inf or +inf where the state changes).
-fn bisect(mut lo: f64, mut hi: f64, mut f: impl FnMut(f64) -> f64, target: f64) -> f64 {
-    for _ in 0..100 {
-        let mid = 0.5 * (lo + hi);
-        let value = f(mid);
-        if (value - target).abs() < 1e-10 || (hi - lo).abs() < 1e-14 {
-            return mid;
-        }
-        if value > target { lo = mid } else { hi = mid }
-    }
-    0.5 * (lo + hi)
-}
-
-impl Settler {
-    fn query(&mut self, pose_b: &DPose3) -> PairReport {
-        self.pipeline
-            .query(
-                &self.a,
-                &DPose3::IDENTITY,
-                &self.b,
-                pose_b,
-                &mut self.scratch,
-            )
-            .expect("settle poses are built from unit quaternions")
-    }
-
-    /// Moves B from `start` along `approach` until the minimum distance is `gap`.
-    fn touch(&mut self, start: &DPose3, approach: DVec3, gap: f64) -> Result<DPose3, String> {
-        let step = 0.5 * self.pipeline.options().margin;
-        if min_distance(&self.query(start)) <= gap {
-            return Err("B does not start clear of A".into());
-        }
-        let mut t = 0.0;
-        for _ in 0..10_000 {
-            let next = t + step;
-            if min_distance(&self.query(&translated(start, approach * next))) <= gap {
-                let found = bisect(
-                    t,
-                    next,
-                    |x| min_distance(&self.query(&translated(start, approach * x))),
-                    gap,
-                );
-                return Ok(translated(start, approach * found));
-            }
-            t = next;
-        }
-        Err("B never reaches A".into())
-    }
-
-    /// `pose` moved along `away` in 5 mm steps until Stage 1 reports no component pair, then
-    /// 5 mm more: a separated scene that stops after Stage 1.
-    fn clear_of_broad_phase(&mut self, pose: &DPose3, away: DVec3) -> DPose3 {
-        let mut moved = 5.0;
-        while moved < 1000.0
-            && self
-                .query(&translated(pose, away * moved))
-                .stats
-                .component_pairs
-                > 0
-        {
-            moved += 5.0;
-        }
-        translated(pose, away * (moved + 5.0))
-    }
-
-    /// The first contact (nearest `pivot`) and the smallest distance among the others
-    /// (-inf when penetrating, +inf when there is none).
-    fn split_contacts(
-        &mut self,
-        pose: &DPose3,
-        pivot: DVec3,
-    ) -> (Option<(f64, DVec3, DVec3)>, f64) {
-        let report = self.query(pose);
-        if report.state == PairState::Penetration {
-            return (None, f64::NEG_INFINITY);
-        }
-        let nearest = report.contacts.iter().enumerate().min_by(|(_, x), (_, y)| {
-            x.point_b
-                .distance(pivot)
-                .total_cmp(&y.point_b.distance(pivot))
-        });
-        let Some((k, first)) = nearest else {
-            return (None, f64::INFINITY);
-        };
-        let others = report
-            .contacts
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| *i != k)
-            .map(|(_, c)| c.distance)
-            .fold(f64::INFINITY, f64::min);
-        (Some((first.distance, first.point_b, first.normal)), others)
-    }
-
-    /// Keeps the contact nearest `pivot` at `gap` by moving B along that contact's normal.
-    fn resettle(&mut self, pose: DPose3, pivot: DVec3, gap: f64) -> (DPose3, DVec3, f64) {
-        let mut pose = pose;
-        let mut pivot = pivot;
-        let mut others = f64::INFINITY;
-        for _ in 0..4 {
-            let (first, rest) = self.split_contacts(&pose, pivot);
-            others = rest;
-            let Some((distance, point_b, normal)) = first else {
-                break;
-            };
-            pivot = point_b;
-            if (distance - gap).abs() < 1e-12 {
-                break;
-            }
-            pose = translated(&pose, normal * (gap - distance));
-        }
-        (pose, pivot, others)
-    }
-
-    /// Turns B about its first contact until a second contact reaches `second_gap`.
-    fn tilt(&mut self, touched: DPose3, spec: &SettleSpec) -> Result<DPose3, String> {
-        let report = self.query(&touched);
-        let first = report
-            .contacts
-            .first()
-            .ok_or("no first contact after touching")?;
-        let (mut pose, mut pivot) = (touched, first.point_b);
-        let step = 0.01;
-        let mut angle = 0.0;
-        while angle < spec.max_tilt {
-            let (next, next_pivot, others) =
-                self.resettle(turned(&pose, pivot, spec.tilt_axis, step), pivot, FIRST_GAP);
-            angle += step;
-            if others <= SECOND_GAP {
-                // Bisect the last step on the second contact's distance.
-                let (base, base_pivot, axis) = (pose, pivot, spec.tilt_axis);
-                let mut at = |x: f64| {
-                    self.resettle(turned(&base, base_pivot, axis, x), base_pivot, FIRST_GAP)
-                };
-                let found = bisect(0.0, step, |x| at(x).2, SECOND_GAP);
-                return Ok(at(found).0);
-            }
-            pose = next;
-            pivot = next_pivot;
-        }
-        Err(format!(
-            "{}: no second contact within {} rad",
-            spec.pair, spec.max_tilt
-        ))
-    }
-}
-
 fn pose_json(pose: &DPose3) -> Value {
     let t = pose.translation;
     let q = pose.rotation;
@@ -319,20 +135,23 @@ pub fn generate_scenes(objects: &[ObjectDescription]) -> Result<Vec<(String, Str
         let b = pipeline
             .prepare_description(find(spec.b)?)
             .map_err(|e| e.to_string())?;
-        let mut settler = Settler {
-            pipeline,
-            a,
-            b,
-            scratch: QueryScratch::default(),
-        };
+        let mut settler = Settler::new(&pipeline, &a, &b);
         let start = DPose3 {
             rotation: spec.rotation,
             translation: spec.start,
         };
         let touched = settler
-            .touch(&start, spec.approach, FIRST_GAP)
+            .touch(&start, spec.approach, FIRST_GAP, MAX_TRAVEL)
             .map_err(|e| format!("{}: {e}", spec.pair))?;
-        let two = settler.tilt(touched, &spec)?;
+        let tilt = TiltSpec {
+            axis: spec.tilt_axis,
+            max_angle: spec.max_tilt,
+            first_gap: FIRST_GAP,
+            second_gap: SECOND_GAP,
+        };
+        let two = settler
+            .tilt(touched, &tilt)
+            .map_err(|e| format!("{}: {e}", spec.pair))?;
         files.push((
             format!("{}-two-contacts.json", spec.pair),
             scene_json(&spec, &two, "two contacts", &options),

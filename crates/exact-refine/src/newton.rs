@@ -17,12 +17,12 @@
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 use crate::dense_solve::{cholesky, cholesky_solve, smallest_eigenvalue_bound};
-use crate::feature_eval::{Body, FeatureEval, Loc, params, with_params};
+use crate::feature_eval::{Body, FeatureEval, Loc, params, side_params, with_params};
 use crate::feature_switch::{reenter, settle};
 use crate::options::NewtonOptions;
 use crate::penetration::{saddle_newton, solve_penetration};
 use crate::sym_eigen::{SymEigen, sym_eigen};
-use geom_param::DVec3;
+use geom_param::{DVec3, FeatureLocation};
 use std::f64::consts::PI;
 
 /// Rounding unit.
@@ -269,17 +269,57 @@ pub(crate) fn solve(
     }
 }
 
-/// Where to restart when `state` sits on a crossing of two faces: each point moved along its
-/// face, away from the other face's outward normal, by the lens size angle / curvature.
+/// Where to restart when `state` sits on a crossing of the two surfaces (f = 0 with no common
+/// normal): each point moved along its face, away from the other face's outward normal, by the
+/// lens size angle / curvature.
+///
+/// A point on a face has its normal; a point on an edge has the arc of normals between its two
+/// faces'. The pair is a touch when the two cones hold opposite directions (to 1e-9 in the
+/// cosine for two faces, the same angle for an edge): a face's normal negated inside the edge's
+/// arc. Otherwise the surfaces cross, and an edge's point restarts on the adjacent face that
+/// cuts the other surface most steeply (its normal least opposed to the other's). Edge against
+/// edge and vertices are left alone.
 fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
-    if state.ea.n != 2 || state.eb.n != 2 || state.d.length() > 1e3 * EPS * state.scale {
+    if state.d.length() > 1e3 * EPS * state.scale {
         return None;
     }
-    let (na, nb) = (state.outward_a(a)?, state.outward_b(b)?);
-    let opposed = -na.dot(nb);
-    if opposed >= 1.0 - 1e-9 {
+    let va = face_views(a, &state.la, &state.ea)?;
+    let vb = face_views(b, &state.lb, &state.eb)?;
+    if va.len() > 1 && vb.len() > 1 {
+        return None;
+    }
+    // Largest angle between opposed normals that still counts as a touch: cos = 1 - 1e-9.
+    let touch_angle = (2e-9_f64).sqrt();
+    let arc_excess = |n: DVec3, arc: &[FaceView]| match arc {
+        [one] => angle_between(n, one.normal),
+        [n1, n2, ..] => {
+            angle_between(n, n1.normal) + angle_between(n, n2.normal)
+                - angle_between(n1.normal, n2.normal)
+        }
+        [] => f64::INFINITY,
+    };
+    let touching = if va.len() == 1 {
+        arc_excess(-va[0].normal, &vb) <= touch_angle
+    } else {
+        arc_excess(-vb[0].normal, &va) <= touch_angle
+    };
+    if touching {
         return None; // a touch, not a crossing
     }
+    // The view of one side that cuts the other side's single face most steeply.
+    let steepest = |views: &[FaceView], other: DVec3| {
+        views
+            .iter()
+            .copied()
+            .max_by(|x, y| x.normal.dot(other).total_cmp(&y.normal.dot(other)))
+    };
+    let (fa, fb) = if va.len() == 1 {
+        (va[0], steepest(&vb, va[0].normal)?)
+    } else {
+        (steepest(&va, vb[0].normal)?, vb[0])
+    };
+    let (na, nb) = (fa.normal, fb.normal);
+    let opposed = -na.dot(nb);
     let angle = opposed.clamp(-1.0, 1.0).acos();
     let length = angle / state.curvature.max(f64::MIN_POSITIVE);
     let shift = |e: &FeatureEval, loc: &Loc, own: DVec3, other: DVec3| {
@@ -300,9 +340,52 @@ fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
             ],
         )
     };
-    let ra = settle(a, shift(&state.ea, &state.la, na, nb));
-    let rb = settle(b, shift(&state.eb, &state.lb, nb, na));
+    let ra = settle(a, shift(&fa.eval, &fa.loc, na, nb));
+    let rb = settle(b, shift(&fb.eval, &fb.loc, nb, na));
     Some((ra, rb))
+}
+
+/// One face through a point: its location, evaluation and outward normal (A's frame).
+#[derive(Clone, Copy, Debug)]
+struct FaceView {
+    loc: Loc,
+    eval: FeatureEval,
+    normal: DVec3,
+}
+
+/// The faces through the point of `loc`: the face itself, or an edge's two faces at the
+/// edge's parameter. `None` for a vertex, a fixed point, or a face with no normal there.
+fn face_views(body: &Body, loc: &Loc, eval: &FeatureEval) -> Option<Vec<FaceView>> {
+    let view = |loc: Loc, eval: FeatureEval| {
+        body.outward_at(&loc, &eval)
+            .map(|normal| FaceView { loc, eval, normal })
+    };
+    match (body, loc) {
+        (_, Some(FeatureLocation::Face { .. })) => Some(vec![view(*loc, *eval)?]),
+        (Body::Solid { solid, .. }, Some(FeatureLocation::Edge { id, t })) => solid
+            .edge(*id)
+            .uses
+            .iter()
+            .map(|u| {
+                let domain = solid.face(u.face).surface.domain();
+                let [fu, fv] = side_params(&domain, u.side, *t);
+                let face = Some(FeatureLocation::Face {
+                    id: u.face,
+                    u: fu,
+                    v: fv,
+                });
+                let eval = body.eval(&face);
+                (eval.n == 2).then_some(())?;
+                view(face, eval)
+            })
+            .collect(),
+        _ => None,
+    }
+}
+
+/// The angle between two unit vectors (rad), accurate near 0 and π.
+fn angle_between(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length().atan2(a.dot(b))
 }
 
 /// Whether a solve that is stationary on an edge or vertex may continue into an adjacent face.

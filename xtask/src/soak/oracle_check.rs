@@ -1,0 +1,210 @@
+//! The pipeline against the independent oracle (`contact-oracle`: dense sampling of both exact
+//! surfaces and plain Newton polishing, sharing nothing with the stages but the exact model).
+//!
+//! Per pose, with the band [delta1, delta2] of the pipeline's options:
+//! - **state**: the pipeline's state must be the oracle's, unless the oracle's minimum distance
+//!   lies within [`AMBIGUITY`] of delta1 or delta2 (then the pose is *borderline*);
+//! - **missed**: an oracle contact in the band with no pipeline contact matching it;
+//! - **false**: a pipeline contact with no oracle contact matching it;
+//!   contacts within [`AMBIGUITY`] of a band edge are borderline on either side, not counted.
+//!   Contacts are compared only when both sides report a contact state (in a penetration the
+//!   pipeline may stop at the first witness).
+//! - A match: distances within [`DISTANCE_TOLERANCE`] and both points within
+//!   [`POINT_TOLERANCE`] x size plus the pipeline's own `point_error_estimate` (for a
+//!   continuous contact, where that estimate is infinite, the distance alone).
+//!
+//! - **oracle limits** (listed, not failures): the oracle documents that it reports no
+//!   penetration witness on an edge or apex. A pipeline contact with negative distance at an
+//!   edge or vertex of either side and no oracle partner is listed as such; and where the
+//!   oracle says separated (nothing within reach) while the pipeline reports a contact whose two
+//!   points, on their exact surfaces (the consistency property checks that), are within delta2
+//!   of each other, the oracle is provably wrong: the surfaces are that close. Likewise when the
+//!   oracle's minimum exceeds |g| for the gap g the pose was built with: the generator moved a
+//!   pair of surface points (a contact's) to exactly g apart along the contact normal, so the
+//!   surfaces are within |g| of each other. The state is then not judged.
+//!
+//! The oracle polishes to a stationarity residual of 1e-10 x size (`OracleOptions::for_solids`,
+//! 2e-8 mm for the 200 mm vase), so its distances are good to that; the distance tolerance is
+//! five times it, and the point tolerance is the pipeline's merge tolerance (two points this
+//! close are one contact).
+
+use contact_oracle::{OracleOptions, OracleReport, OracleState, find_contacts};
+use contact_pipeline::{Contact, ContactOptions, PairReport, PairState};
+use geom_param::{DPose3, FeatureLocation, Solid};
+
+/// Distance tolerance of a match (mm).
+pub const DISTANCE_TOLERANCE: f64 = 1e-7;
+/// Point tolerance of a match, relative to the larger object's size.
+pub const POINT_TOLERANCE: f64 = 1e-6;
+/// Distances this close to delta1 or delta2 (mm) are borderline: either state is right.
+pub const AMBIGUITY: f64 = 1e-7;
+
+/// How one pose compares.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OracleComparison {
+    /// The states differ away from the band edges.
+    pub state_mismatch: Option<String>,
+    /// The pose or some contact is within [`AMBIGUITY`] of a band edge.
+    pub borderline: bool,
+    /// Oracle contacts in the band the pipeline did not report (description each).
+    pub missed: Vec<String>,
+    /// Pipeline contacts the oracle does not have (description each).
+    pub false_contacts: Vec<String>,
+    /// Largest |distance difference| over matched contacts (mm).
+    pub worst_distance: f64,
+    /// Largest point difference over matched contacts with finite point error estimates (mm).
+    pub worst_point: f64,
+    /// The oracle's two spacings disagree (unmatched contacts).
+    pub cross_check_disagrees: bool,
+    /// Disagreements explained by the oracle's documented limits (description each).
+    pub oracle_limits: Vec<String>,
+}
+
+/// Whether a location is on an edge or vertex (where the oracle reports no penetration
+/// witness).
+fn on_edge_or_vertex(location: &FeatureLocation) -> bool {
+    !matches!(location, FeatureLocation::Face { .. })
+}
+
+fn near_edge(d: f64, options: &ContactOptions) -> bool {
+    (d - options.delta1).abs() <= AMBIGUITY || (d - options.delta2).abs() <= AMBIGUITY
+}
+
+/// The oracle's report for A at the identity and B at `pose_b`, reaching 2 x delta2.
+///
+/// # Errors
+/// The oracle's error as text.
+pub fn oracle_report(
+    a: &Solid,
+    b: &Solid,
+    pose_b: &DPose3,
+    options: &ContactOptions,
+) -> Result<OracleReport, String> {
+    let oracle_options = OracleOptions::for_solids(a, b, 2.0 * options.delta2);
+    find_contacts(a, &DPose3::IDENTITY, b, pose_b, &oracle_options).map_err(|e| e.to_string())
+}
+
+/// Whether pipeline contact `c` and the oracle's point pair are the same minimum; the
+/// distance and point differences when they are.
+fn matched(
+    c: &Contact,
+    point_a: geom_param::DVec3,
+    point_b: geom_param::DVec3,
+    distance: f64,
+    size: f64,
+) -> Option<(f64, f64)> {
+    let dd = (c.distance - distance).abs();
+    if dd > DISTANCE_TOLERANCE {
+        return None;
+    }
+    let pe = c.diagnostics.point_error_estimate;
+    if !pe.is_finite() {
+        return Some((dd, 0.0));
+    }
+    let dp = c.point_a.distance(point_a).max(c.point_b.distance(point_b));
+    (dp <= POINT_TOLERANCE * size + pe).then_some((dd, dp))
+}
+
+/// Compares the pipeline's `report` with the oracle's for the same pose, built with surface
+/// points `aimed_gap` (mm) apart.
+#[must_use]
+pub fn compare(
+    report: &PairReport,
+    oracle: &OracleReport,
+    options: &ContactOptions,
+    size: f64,
+    aimed_gap: f64,
+) -> OracleComparison {
+    let mut out = OracleComparison {
+        cross_check_disagrees: oracle.cross_check.unmatched > 0,
+        ..OracleComparison::default()
+    };
+    let truth = oracle.state(options.delta1, options.delta2);
+    let same = matches!(
+        (truth, report.state),
+        (OracleState::Separated, PairState::Separated)
+            | (OracleState::Contact, PairState::Contact)
+            | (OracleState::Penetration, PairState::Penetration)
+    );
+    // A pipeline contact whose points are within delta2 of each other proves the surfaces are
+    // that close: "separated" from the oracle is then its miss.
+    let certified = report
+        .contacts
+        .iter()
+        .find(|c| c.point_a.distance(c.point_b) <= options.delta2);
+    if oracle.min_distance > aimed_gap.abs() + DISTANCE_TOLERANCE {
+        out.oracle_limits.push(format!(
+            "oracle minimum {:e}, but the pose was built with surface points {:e} mm apart \
+             (pipeline {:?})",
+            oracle.min_distance, aimed_gap, report.state
+        ));
+        return out;
+    }
+    if near_edge(oracle.min_distance, options) {
+        out.borderline = true;
+    } else if let (false, OracleState::Separated, Some(c)) = (same, truth, certified) {
+        out.oracle_limits.push(format!(
+            "oracle separated, but pipeline points {:?} / {:?} are {:e} mm apart ({:?} {:?})",
+            c.point_a,
+            c.point_b,
+            c.point_a.distance(c.point_b),
+            c.location_a,
+            c.location_b
+        ));
+        return out;
+    } else if !same {
+        out.state_mismatch = Some(format!(
+            "pipeline {:?}, oracle {truth:?} (oracle min distance {:e})",
+            report.state, oracle.min_distance
+        ));
+    }
+    if truth != OracleState::Contact || report.state != PairState::Contact {
+        return out;
+    }
+    for o in oracle.in_band(options.delta1, options.delta2) {
+        if near_edge(o.distance, options) {
+            out.borderline = true;
+            continue;
+        }
+        let best = report
+            .contacts
+            .iter()
+            .filter_map(|c| matched(c, o.point_a, o.point_b, o.distance, size))
+            .min_by(|x, y| x.0.total_cmp(&y.0));
+        match best {
+            Some((dd, dp)) => {
+                out.worst_distance = out.worst_distance.max(dd);
+                out.worst_point = out.worst_point.max(dp);
+            }
+            None => out.missed.push(format!(
+                "oracle d {:e} at {:?} / {:?} (faces {:?} {:?})",
+                o.distance, o.point_a, o.point_b, o.face_a, o.face_b
+            )),
+        }
+    }
+    for c in &report.contacts {
+        if near_edge(c.distance, options) {
+            out.borderline = true;
+            continue;
+        }
+        let found = oracle
+            .contacts
+            .iter()
+            .any(|o| matched(c, o.point_a, o.point_b, o.distance, size).is_some());
+        if !found
+            && c.distance < 0.0
+            && (on_edge_or_vertex(&c.location_a) || on_edge_or_vertex(&c.location_b))
+        {
+            out.oracle_limits.push(format!(
+                "penetration witness at an edge or vertex: pipeline d {:e} ({:?} {:?})",
+                c.distance, c.location_a, c.location_b
+            ));
+        } else if !found {
+            out.false_contacts.push(format!(
+                "pipeline d {:e} at {:?} / {:?} ({:?} {:?}, {:?})",
+                c.distance, c.point_a, c.point_b, c.location_a, c.location_b, c.diagnostics.status
+            ));
+        }
+    }
+    out
+}

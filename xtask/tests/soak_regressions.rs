@@ -1,0 +1,161 @@
+//! Failures found by `cargo xtask soak`, each kept with its literal pose (A at the identity,
+//! B at the pose given, default `ContactOptions`) and a comment on what failed. The ones still
+//! failing are `#[ignore]`d with the reason; see docs/ROBUSTNESS.md ("Soak").
+
+use contact_pipeline::{
+    ContactOptions, ContactPipeline, PairReport, PairState, PreparedObject, QueryScratch,
+};
+use geom_param::{DPose3, DQuat, DVec3};
+use std::collections::BTreeMap;
+use xtask::soak::normal_cone::normal_cone;
+use xtask::soak::run::prepare_objects;
+
+fn pose(t: [f64; 3], q: [f64; 4]) -> DPose3 {
+    DPose3 {
+        translation: DVec3::from_array(t),
+        rotation: DQuat::from_array(q),
+    }
+}
+
+fn setup() -> (ContactPipeline, BTreeMap<String, PreparedObject>) {
+    let pipeline = ContactPipeline::new(ContactOptions::default()).expect("default options");
+    let objects = prepare_objects(&pipeline).expect("paper objects build");
+    (pipeline, objects)
+}
+
+fn query(
+    pipeline: &ContactPipeline,
+    a: &PreparedObject,
+    pose_a: &DPose3,
+    b: &PreparedObject,
+    pose_b: &DPose3,
+    scratch: &mut QueryScratch,
+) -> PairReport {
+    pipeline
+        .query(a, pose_a, b, pose_b, scratch)
+        .expect("unit quaternions")
+}
+
+/// Found by the flip property (paperweight-pencil, seed 4415940930031423605 of
+/// `cargo xtask soak 36 --seed 1`): B was set 1.672e-3 mm into A along the normal of a
+/// face-face contact, and the pipeline reported a single contact at distance 2.5e-15 between
+/// the paperweight's face 1 and the pencil's edge 0 (a smooth edge). The surfaces cross there:
+/// the face's normal is 0.17 rad off the pencil's normal, so the point is on the intersection
+/// curve, not a touch. Stage 3 restarted into the penetration solve from a crossing of two
+/// faces but not from an edge crossing a face, and the zero-distance point passed as a local
+/// minimum of |P_a - P_b|. Fixed in `exact_refine::newton::crossing_restart`: an edge's point
+/// is a touch only when the other face's normal, negated, lies in the arc of its two faces'
+/// normals; otherwise the solve restarts on the steeper face. Now both orders find the
+/// penetration the pose was built with.
+#[test]
+fn an_edge_crossing_a_face_is_not_a_contact() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [30.948056502505978, -1.4369350602541915, -1.0424243677758185],
+        [
+            0.6554801473691044,
+            -0.711486880226767,
+            0.16213254946615502,
+            -0.19453851051594917,
+        ],
+    );
+    let (a, b) = (&objects["paperweight"], &objects["pencil"]);
+    let mut scratch = QueryScratch::default();
+    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
+    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    for (report, first, pose_first, second, pose_second) in [
+        (&ab, a, DPose3::IDENTITY, b, pose_b),
+        (&ba, b, pose_b, a, DPose3::IDENTITY),
+    ] {
+        assert_eq!(report.state, PairState::Penetration, "{report:?}");
+        for c in &report.contacts {
+            // Any contact kept must be a touch: the normal in both normal cones.
+            let cone_a = normal_cone(&first.model.solid, &c.location_a)
+                .expect("cone at A")
+                .rotated(pose_first.rotation);
+            let cone_b = normal_cone(&second.model.solid, &c.location_b)
+                .expect("cone at B")
+                .rotated(pose_second.rotation);
+            assert!(cone_a.excess(c.normal) < 1e-6, "{c:?}");
+            assert!(cone_b.excess(-c.normal) < 1e-6, "{c:?}");
+        }
+    }
+}
+
+/// Found by the swap property (goblet-jar, seed 14010951826386768336 of
+/// `cargo xtask soak 36 --seed 1`). Goblet first: Stage 3 refines the single seed to a
+/// penetration of -0.0227 mm between the goblet's rim edge (edge 7, z = 150) and the jar's
+/// face 1. Jar first: the same seed, with the goblet's point at v = 0.9999999999999994 instead
+/// of v = 1 (the face boundary at the rim) after the change of frame, makes the Newton
+/// iteration wander 56 mm away and stop at the iteration limit (223 iterations), and the pair
+/// is reported separated.
+#[test]
+#[ignore = "Stage 3 diverges from a seed 6e-16 inside a face boundary (iteration limit)"]
+fn swapping_goblet_and_jar_keeps_the_state() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [9.017570918688739, 64.52225739926473, 157.21971540504506],
+        [
+            -0.5323539114746471,
+            0.27750465959971143,
+            -0.5881057060936296,
+            0.5419613965018225,
+        ],
+    );
+    let (a, b) = (&objects["goblet"], &objects["jar"]);
+    let mut scratch = QueryScratch::default();
+    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
+    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    assert_eq!(ab.state, ba.state);
+}
+
+/// Two paperweights touching (the pose the pose generator's touch reached for
+/// paperweight-paperweight seed 2092789425003139053 of `cargo xtask soak 720 --seed 2`): the
+/// base's flat bottom (face 0) of one against the base's upper fillet (face 3) of the other at
+/// distance -1.5e-9 mm. A fresh query reports the contact; a query after one at B moved by
+/// 3.2 mm (which changes the GJK warm start, hence the seed) reports separated: the refined
+/// minimum is the same pair at -1.1e-9 mm but `is_local_minimum` is false, because at a
+/// penetration of 1e-9 mm the second-order test (exactly two negative eigenvalues of the
+/// sliding directions, of size |d| x curvature ~ 1e-11) is decided by rounding. The same pair
+/// queried in the other order is also reported separated.
+#[test]
+#[ignore = "second-order test at |d| ~ 1e-9 rejects a touching minimum; the answer depends on the seed"]
+fn a_touch_does_not_depend_on_the_previous_query_or_the_order() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [42.32213345196685, 18.48019303646614, -7.520722805550621],
+        [
+            -0.4736673641827512,
+            -0.4269739948233737,
+            -0.741315105691558,
+            0.2092471025516212,
+        ],
+    );
+    let before = DPose3 {
+        translation: pose_b.translation
+            + DVec3::new(0.34612635021871063, 1.6170244361474273, -2.7175171385536165),
+        ..pose_b
+    };
+    let p = &objects["paperweight"];
+    let fresh = query(
+        &pipeline,
+        p,
+        &DPose3::IDENTITY,
+        p,
+        &pose_b,
+        &mut QueryScratch::default(),
+    );
+    let mut scratch = QueryScratch::default();
+    let _ = query(&pipeline, p, &DPose3::IDENTITY, p, &before, &mut scratch);
+    let after = query(&pipeline, p, &DPose3::IDENTITY, p, &pose_b, &mut scratch);
+    let swapped = query(
+        &pipeline,
+        p,
+        &pose_b,
+        p,
+        &DPose3::IDENTITY,
+        &mut QueryScratch::default(),
+    );
+    assert_eq!(fresh.state, after.state, "after a query 3.2 mm away");
+    assert_eq!(fresh.state, swapped.state, "objects swapped");
+}
