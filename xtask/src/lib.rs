@@ -1,7 +1,7 @@
 //! Project automation behind `cargo xtask`: fixture generation.
 
 pub mod obj;
-pub mod random;
+pub mod rng;
 pub mod paper_objects;
 pub mod report;
 pub mod scenes;

@@ -5,6 +5,5 @@ pub mod normal_cone;
 pub mod oracle_check;
 pub mod pose_generator;
 pub mod properties;
-pub mod rng;
 pub mod run;
 pub mod table;

@@ -6,7 +6,7 @@
 //! truth about a pose comes from the oracle and the properties.
 
 use crate::settle::{Settler, TiltSpec, min_distance, translated};
-use crate::soak::rng::SplitMix64;
+use crate::rng::SplitMix64;
 use contact_pipeline::{ContactOptions, PreparedObject};
 use geom_param::{DPose3, DVec3, ObjectModel};
 

@@ -7,7 +7,7 @@
 //! free constant except the rounding floors.
 
 use crate::soak::normal_cone::{angle, local_curvature, normal_cone};
-use crate::soak::rng::SplitMix64;
+use crate::rng::SplitMix64;
 use contact_pipeline::{
     Contact, ContactPipeline, PairReport, PairState, PreparedObject, QueryScratch,
 };

@@ -5,7 +5,7 @@ use crate::paper_objects::paper_objects;
 use crate::soak::oracle_check::{compare, oracle_report};
 use crate::soak::pose_generator::{GapKind, PoseGenerator, SoakPose};
 use crate::soak::properties::{Property, PropertyChecker, PropertyFailure};
-use crate::soak::rng::SplitMix64;
+use crate::rng::SplitMix64;
 use contact_pipeline::{ContactOptions, ContactPipeline, PairState, PreparedObject};
 use std::collections::BTreeMap;
 

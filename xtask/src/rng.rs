@@ -1,5 +1,5 @@
-//! The soak's only random source: SplitMix64 (Steele, Lea and Flood 2014), small and seedable,
-//! so that every pose is reproduced from its seed alone.
+//! The only random source of the generated poses (soak, report): SplitMix64 (Steele, Lea and
+//! Flood 2014), small and seedable, so that every pose is reproduced from its seed alone.
 
 use geom_param::{DQuat, DVec3};
 
@@ -31,6 +31,14 @@ impl SplitMix64 {
     /// Uniform in [lo, hi).
     pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.unit()
+    }
+
+    /// Uniform index in 0..n (0 when n is 0); the modulo bias is below n / 2^64.
+    pub fn index(&mut self, n: usize) -> usize {
+        if n == 0 {
+            return 0;
+        }
+        usize::try_from(self.next_u64() % n as u64).unwrap_or(0)
     }
 
     /// A direction uniform on the unit sphere (Marsaglia's z / azimuth method).
