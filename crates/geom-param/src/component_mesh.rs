@@ -57,19 +57,6 @@ impl ComponentMesh {
         self.triangles[triangle].map(|i| self.positions[i as usize])
     }
 
-    /// Vertex positions moved outwards by `margin` (mm) along their normals: the vertices of the
-    /// proxy mesh of a concave component (same triangles). Where the surface's concave radius
-    /// of curvature is below `margin` the offset folds over itself; the proxy is still a valid
-    /// collision target, only no longer an exact offset there.
-    #[must_use]
-    pub fn offset_positions(&self, margin: f64) -> Vec<DVec3> {
-        self.positions
-            .iter()
-            .zip(&self.normals)
-            .map(|(p, n)| *p + *n * margin)
-            .collect()
-    }
-
     /// Number of triangles.
     #[must_use]
     pub fn len(&self) -> usize {

@@ -182,15 +182,29 @@ impl MeshPhase for MeshNarrowphase {
             }
             out.stats.convex_fallback = true;
         }
-        triangle_path(
-            &side_a,
-            &side_b,
-            pose_ab,
-            band.margin + errors,
-            scratch,
-            out,
-        )
+        triangle_path(&side_a, &side_b, pose_ab, band.delta2, errors, scratch, out)
     }
+}
+
+/// The proxy offset (mm) for a contact band's `delta2` and the two components' chordal errors
+/// `errors` = e_A + e_B, for a proxy of a component of size `size` (mm):
+/// `max(delta2, 0) + errors + 1e-9 · size`.
+///
+/// Why it suffices: two exact points within `delta2` have mesh points within
+/// `delta2 + e_A + e_B` (each mesh is within its chordal error of its surface), so the other
+/// mesh comes at least that close to this one and, unless the meshes intersect (step 1 of the
+/// triangle path), reaches a proxy that stands that far off (see [`crate::proxy_mesh::ProxyMesh`]
+/// for the shell's thickness). A negative `delta2` counts as 0, so that the proxy stays outside
+/// the mesh (a contact band below zero is a penetration band, which the mesh-mesh step and
+/// Stage 3 handle); the term `1e-9 · size`, far above the rounding of coordinates of magnitude
+/// `size` (about 1e-16 · size) yet far below any chordal tolerance a model accepts
+/// ([`geom_param::MIN_RELATIVE_TOLERANCE`] = 2e-5 of the object's size),
+/// keeps the offset positive on exactly flat meshes (e = 0) with `delta2 <= 0`, and makes a
+/// pair exactly at the band's edge still meet the proxy despite the rounding of the offset
+/// vertices. The value depends only on the band, the pair's errors and the proxy side's size,
+/// so repeated queries of a pair hit the same cached proxy.
+fn proxy_offset(delta2: f64, errors: f64, size: f64) -> f64 {
+    delta2.max(0.0) + errors + 1e-9 * size
 }
 
 /// Within this distance (mm) a GJK point counts as lying on the mesh: the mesh's chordal error
@@ -215,7 +229,8 @@ fn triangle_path(
     side_a: &Side<'_>,
     side_b: &Side<'_>,
     pose_ab: &DPose3,
-    offset: f64,
+    delta2: f64,
+    errors: f64,
     scratch: &mut MeshScratch,
     out: &mut MeshOutput,
 ) -> MeshVerdict {
@@ -272,6 +287,7 @@ fn triangle_path(
     let proxy_on_a =
         !(side_a.kind == ComponentKind::Convex && side_b.kind == ComponentKind::Concave);
     let proxy_side = if proxy_on_a { side_a } else { side_b };
+    let offset = proxy_offset(delta2, errors, proxy_side.size);
     let (proxy, built) = proxy_side
         .prepared
         .proxies

@@ -4,13 +4,16 @@ use geom_param::{ComponentId, DPose3, ObjectModel, Seed};
 use glam::DVec3;
 
 /// The distance band of the query (mm): contact when `delta1 <= d <= delta2`; `margin` is the
-/// proxy offset and must be `>= delta2`.
+/// broad phase's margin, which must cover the band (`>= delta2`).
 ///
 /// Paper section II: two objects are in contact when their minimum distance d lies in
 /// [δ1, δ2], in penetration below δ1 and separated above δ2.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactBand {
-    /// Offset of the proxy meshes (mm), `>= delta2`.
+    /// The margin Stage 1 inflated its volumes by (mm), `>= delta2`. Stage 2 only checks that it
+    /// covers the band (a pair farther apart than the margin was never handed over, so a
+    /// `delta2` beyond it would be a band Stage 1 cannot honour); the proxy offset comes from
+    /// `delta2` and the chordal errors, not from the margin (see [`MeshPhase`]).
     pub margin: f64,
     /// Lower end of the contact band (mm); may be negative.
     pub delta1: f64,
@@ -64,7 +67,8 @@ pub struct ComponentRef<'a, P> {
 /// - [`MeshVerdict::Separated`]: no point of the two meshes is within `delta2 + e_A + e_B` of
 ///   the other (so no exact points are within `delta2`): for convex pairs, the hulls are
 ///   farther apart than that; otherwise no triangle of the other mesh reaches the proxy, the
-///   mesh offset outwards by `margin + e_A + e_B`.
+///   mesh offset outwards by `max(delta2, 0) + e_A + e_B` plus a rounding allowance of
+///   1e-9 of the component's size (see the triangle path).
 /// - [`MeshVerdict::Penetrating`]: the two meshes intersect (exact predicates);
 ///   [`MeshOutput::penetrating_pairs`] lists every intersecting (triangle of A, triangle of B)
 ///   pair and [`MeshOutput::penetration_centres`] one witness point per connected region.
@@ -101,7 +105,16 @@ pub struct ComponentRef<'a, P> {
 ///    the components' triangle BVHs and an exact triangle-triangle test: any pair means
 ///    penetrating meshes (one seed per region; see the verdicts).
 /// 2. Otherwise every intersecting pair between the proxy of one component (the concave one; A
-///    when both or neither are) and the other's mesh. The colliding pairs are grouped into
+///    when both or neither are) and the other's mesh. The proxy is that component's mesh offset
+///    outwards by `max(delta2, 0) + e_A + e_B + 1e-9 · size` (size: the component's largest
+///    coordinate), standing at least that far above each of its triangles' planes (vertices on
+///    creases move further; see [`crate::proxy_mesh::ProxyMesh`]). That offset suffices: two
+///    exact points within `delta2` have mesh points within `delta2 + e_A + e_B`, so the other
+///    mesh, unless it intersects this one (step 1), reaches into the proxy shell and, unless it
+///    lies wholly inside the shell (see the limitations), crosses the proxy. A wider offset (e.g.
+///    the broad phase's margin) would only widen the overlap regions, cost triangle tests, and
+///    could merge two nearby distinct minima into one region (one seed, one contact lost).
+///    The colliding pairs are grouped into
 ///    connected regions: pieces of intersection line joined end to end (mesh adjacency is not
 ///    used, because one long triangle, e.g. of a cylinder's side, can reach into several
 ///    contacts). For each region, p_ci is the centre of the area its intersection lines bound
@@ -114,15 +127,17 @@ pub struct ComponentRef<'a, P> {
 /// # Limitations
 /// As in the paper (section IV), a component completely inside the other solid without surface
 /// intersection is not reported as penetrating. Likewise a component lying entirely inside the
-/// proxy shell (between a mesh and its proxy) without crossing the proxy is not seen on the
-/// triangle path; choose `margin` below the size of the smallest feature that can come close.
-/// Where a concave radius of curvature is below the offset the proxy folds over itself; it is
-/// still a valid collision target.
+/// proxy shell (between a mesh and its proxy, `max(delta2, 0) + e_A + e_B` thick) without
+/// crossing the proxy is not seen on the triangle path. Where a concave radius of curvature is
+/// below the offset the proxy folds over itself; it is still a valid collision target. Where it
+/// is concave with radius R above the offset, the proxy can stand closer to the mesh than the
+/// offset by about `offset · e / R` (second order in the mesh error), so a pair whose mesh
+/// distance lies within that of `delta2 + e_A + e_B` may be missed.
 ///
 /// # Panics
 /// Never on any input values; `out` is cleared first and every output is finite.
 pub trait MeshPhase {
-    /// Per-object preprocessing (triangle BVHs; lazily built proxy meshes behind OnceLock, keyed by margin).
+    /// Per-object preprocessing (triangle BVHs; lazily built proxy meshes behind OnceLock, keyed by offset).
     type Prepared: Send + Sync;
     /// Caller-owned scratch and warm-start state (e.g. last GJK support vertices per component pair).
     type Scratch: Default + Send;
