@@ -1,9 +1,9 @@
 //! Project automation behind `cargo xtask`: fixture generation.
 
 pub mod obj;
-pub mod rng;
 pub mod paper_objects;
 pub mod report;
+pub mod rng;
 pub mod scenes;
 pub mod settle;
 pub mod soak;

@@ -32,7 +32,11 @@ impl MethodSettings {
                 });
             }
         }
-        methods.extend(self.chordal.iter().map(|&chordal| Method::MeshSeeds { chordal }));
+        methods.extend(
+            self.chordal
+                .iter()
+                .map(|&chordal| Method::MeshSeeds { chordal }),
+        );
         for warm in [true, false] {
             methods.extend(
                 self.parry_triangles
@@ -111,18 +115,20 @@ pub fn figure(scene: &AccuracyScene, measurements: &[Measurement]) -> Result<Str
 pub fn default_exact(measurements: &[Measurement]) -> Option<&Measurement> {
     let defaults = contact_pipeline::ContactOptions::default();
     let newton = exact_refine::NewtonOptions::default();
-    measurements.iter().find(|m| {
-        m.method
-            == Method::Exact {
-                chordal: defaults.chordal_tolerance,
-                angle_tolerance: newton.angle_tolerance,
-            }
-    })
-    .or_else(|| {
-        measurements
-            .iter()
-            .find(|m| matches!(m.method, Method::Exact { .. }))
-    })
+    measurements
+        .iter()
+        .find(|m| {
+            m.method
+                == Method::Exact {
+                    chordal: defaults.chordal_tolerance,
+                    angle_tolerance: newton.angle_tolerance,
+                }
+        })
+        .or_else(|| {
+            measurements
+                .iter()
+                .find(|m| matches!(m.method, Method::Exact { .. }))
+        })
 }
 
 /// The ratios the report states for one scene against one baseline measurement.

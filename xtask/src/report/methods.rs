@@ -244,7 +244,13 @@ fn run_pipeline<R: exact_refine::Refiner>(
         .collect();
     let triangles = [&a, &b]
         .iter()
-        .map(|o| o.model.meshes.iter().map(|m| m.triangles.len()).sum::<usize>())
+        .map(|o| {
+            o.model
+                .meshes
+                .iter()
+                .map(|m| m.triangles.len())
+                .sum::<usize>()
+        })
         .sum::<usize>()
         / 2;
     Ok(score(scene, method, time_us, triangles, &reported))

@@ -17,7 +17,9 @@ pub mod stage_times;
 pub mod timing;
 mod writer;
 
-use accuracy_scene::{AccuracyScene, PAPER_SCENES, closed_form_scene, closed_form_scenes, paper_scene};
+use accuracy_scene::{
+    AccuracyScene, PAPER_SCENES, closed_form_scene, closed_form_scenes, paper_scene,
+};
 use error_vs_time::MethodSettings;
 use paper_tables::TableSettings;
 use std::path::Path;

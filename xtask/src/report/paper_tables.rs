@@ -138,9 +138,8 @@ fn near_contact_pose(
     let (pa, na) = surface_point(a);
     let (pb, _) = surface_point(b);
     let rotation = rng.rotation();
-    let target = pa
-        + na * rng.uniform(-spread, 2.0 * spread)
-        + rng.direction() * rng.uniform(0.0, spread);
+    let target =
+        pa + na * rng.uniform(-spread, 2.0 * spread) + rng.direction() * rng.uniform(0.0, spread);
     DPose3::from_parts(target - rotation * pb, rotation)
 }
 

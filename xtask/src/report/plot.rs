@@ -76,10 +76,7 @@ fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
 
-fn draw_panel(
-    panel: &Panel,
-    area: &Area<'_>,
-) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
+fn draw_panel(panel: &Panel, area: &Area<'_>) -> Result<(), DrawingAreaErrorKind<std::io::Error>> {
     let all = || panel.series.iter().flat_map(|s| s.points.iter().copied());
     let (x0, x1) = bounds(all().map(|p| p.0));
     let (y0, y1) = bounds(all().map(|p| p.1));

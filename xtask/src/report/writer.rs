@@ -37,7 +37,10 @@ fn mm(e: f64) -> String {
 
 /// "a to b" for a range of errors (mm), "none" for no range.
 fn range(r: Option<(f64, f64)>) -> String {
-    r.map_or_else(|| "none".into(), |(lo, hi)| format!("{} to {}", mm(lo), mm(hi)))
+    r.map_or_else(
+        || "none".into(),
+        |(lo, hi)| format!("{} to {}", mm(lo), mm(hi)),
+    )
 }
 
 /// A ratio in words: "12x", "3.4e5x".
@@ -117,7 +120,10 @@ fn accuracy_section(s: &mut String, data: &ReportData<'_>) {
         );
     }
     let _ = writeln!(s);
-    let _ = writeln!(s, "### Ratios (ours at the default setting vs parry, warm)\n");
+    let _ = writeln!(
+        s,
+        "### Ratios (ours at the default setting vs parry, warm)\n"
+    );
     let _ = writeln!(
         s,
         "\"x faster\" = parry's time / ours; \"x more accurate\" = parry's error / ours (errors floored at {FLOOR:.0e} mm); \"x faster at equal accuracy\" = parry's time / the time of our fastest setting that is at least as accurate in both distance and points.\n"
@@ -159,7 +165,11 @@ fn accuracy_section(s: &mut String, data: &ReportData<'_>) {
     }
     for (scene, measurements, figure) in data.accuracy {
         let _ = writeln!(s, "### {}\n", scene.name);
-        let _ = writeln!(s, "![error against time, {}](report/{figure})\n", scene.name);
+        let _ = writeln!(
+            s,
+            "![error against time, {}](report/{figure})\n",
+            scene.name
+        );
         let _ = writeln!(
             s,
             "| method | setting | triangles/object | µs/query | distance error (mm) | point error (mm) | missed | extra |"
@@ -226,7 +236,10 @@ fn paper_section(s: &mut String, data: &ReportData<'_>) {
         s,
         "### Table 1: tree-vs-tree check, paperweight against goblet\n\nRandom near-contact poses grouped by the number of colliding leaf pairs (bevelled 18-DOP leaves, margin 1 mm).\n"
     );
-    let _ = writeln!(s, "| colliding leaf pairs | poses | ours (µs) | paper (µs) | paper / ours |");
+    let _ = writeln!(
+        s,
+        "| colliding leaf pairs | poses | ours (µs) | paper (µs) | paper / ours |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|");
     for row in data.table1 {
         let paper = PAPER_TABLE1_US[row.pairs.min(6)];
@@ -246,7 +259,10 @@ fn paper_section(s: &mut String, data: &ReportData<'_>) {
         PAPER_FIG2_RANGE_US.0 / 1000.0,
         PAPER_FIG2_RANGE_US.1 / 1000.0
     );
-    let _ = writeln!(s, "| feature pairs | queries | ours, median total (µs) | paper (µs) | paper / ours |");
+    let _ = writeln!(
+        s,
+        "| feature pairs | queries | ours, median total (µs) | paper (µs) | paper / ours |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|");
     let paper_mid = 0.5 * (PAPER_FIG2_RANGE_US.0 + PAPER_FIG2_RANGE_US.1);
     for (pairs, (n, us)) in &data.random.by_feature_pairs {
@@ -262,7 +278,10 @@ fn paper_section(s: &mut String, data: &ReportData<'_>) {
         s,
         "\n### Table 2: Newton time per feature pair kind\n\nStage 3 time of the random queries above that refined exactly one feature pair into one contact, by the kinds of the final features (vertex = point, edge = curve, face = surface). The paper's table is partly garbled in our copy; we read it as point-curve 0.17, curve-curve 0.32, curve-surface 0.62, surface-surface 0.95 ms.\n"
     );
-    let _ = writeln!(s, "| feature pair | solves | ours, median (µs) | paper (µs) | paper / ours |");
+    let _ = writeln!(
+        s,
+        "| feature pair | solves | ours, median (µs) | paper (µs) | paper / ours |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|");
     let mut kinds: Vec<&str> = PAPER_TABLE2_US.iter().map(|(k, _)| *k).collect();
     for k in data.random.by_kind.keys() {
@@ -271,7 +290,10 @@ fn paper_section(s: &mut String, data: &ReportData<'_>) {
         }
     }
     for kind in kinds {
-        let paper = PAPER_TABLE2_US.iter().find(|(k, _)| *k == kind).map(|p| p.1);
+        let paper = PAPER_TABLE2_US
+            .iter()
+            .find(|(k, _)| *k == kind)
+            .map(|p| p.1);
         let ours = data.random.by_kind.get(kind);
         let _ = writeln!(
             s,
@@ -285,11 +307,11 @@ fn paper_section(s: &mut String, data: &ReportData<'_>) {
             }
         );
     }
+    let _ = writeln!(s, "\n### Table 3: total time of the two-contact scenes\n");
     let _ = writeln!(
         s,
-        "\n### Table 3: total time of the two-contact scenes\n"
+        "| scene | contacts | ours (µs) | paper (µs) | paper / ours |"
     );
-    let _ = writeln!(s, "| scene | contacts | ours (µs) | paper (µs) | paper / ours |");
     let _ = writeln!(s, "|---|---|---|---|---|");
     for row in data.table3 {
         let paper = PAPER_TABLE3_US
@@ -327,7 +349,10 @@ fn stage_row(s: &mut String, label: &str, row: &super::stage_times::StageTimes, 
 fn stage_section(s: &mut String, data: &ReportData<'_>) {
     let _ = writeln!(s, "## 3. Where the time goes\n");
     let _ = writeln!(s, "### Per-stage share, paper scenes (two contacts)\n");
-    let _ = writeln!(s, "| scene | broad µs (share) | mesh µs (share) | refine µs (share) | whole query µs |");
+    let _ = writeln!(
+        s,
+        "| scene | broad µs (share) | mesh µs (share) | refine µs (share) | whole query µs |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|");
     for row in data.table3 {
         stage_row(s, &row.name, &row.times, "");
@@ -338,7 +363,10 @@ fn stage_section(s: &mut String, data: &ReportData<'_>) {
     );
     for (name, rows) in data.growth_resolution {
         let _ = writeln!(s, "**{name}**\n");
-        let _ = writeln!(s, "| chordal (mm) | triangles | broad µs | mesh µs | refine µs | whole µs |");
+        let _ = writeln!(
+            s,
+            "| chordal (mm) | triangles | broad µs | mesh µs | refine µs | whole µs |"
+        );
         let _ = writeln!(s, "|---|---|---|---|---|---|");
         for row in rows {
             stage_row(
@@ -354,7 +382,10 @@ fn stage_section(s: &mut String, data: &ReportData<'_>) {
         s,
         "### Growth with the number of components\n\nA column of n bumps (one convex component each) against a ball resting 0.02 mm off the middle bump.\n"
     );
-    let _ = writeln!(s, "| bumps | components (both) | broad µs | mesh µs | refine µs | whole µs |");
+    let _ = writeln!(
+        s,
+        "| bumps | components (both) | broad µs | mesh µs | refine µs | whole µs |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|---|");
     for row in data.growth_components {
         stage_row(

@@ -5,8 +5,8 @@
 //! The generator only decides poses. The gap it aims for is a label for the statistics; the
 //! truth about a pose comes from the oracle and the properties.
 
-use crate::settle::{Settler, TiltSpec, min_distance, translated};
 use crate::rng::SplitMix64;
+use crate::settle::{Settler, TiltSpec, min_distance, translated};
 use contact_pipeline::{ContactOptions, PreparedObject};
 use geom_param::{DPose3, DVec3, ObjectModel};
 

@@ -6,8 +6,8 @@
 //! Tolerances come from the contact's own diagnostics (see [`ContactTolerances`]); none is a
 //! free constant except the rounding floors.
 
-use crate::soak::normal_cone::{angle, local_curvature, normal_cone};
 use crate::rng::SplitMix64;
+use crate::soak::normal_cone::{angle, local_curvature, normal_cone};
 use contact_pipeline::{
     Contact, ContactPipeline, PairReport, PairState, PreparedObject, QueryScratch,
 };

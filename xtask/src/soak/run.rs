@@ -2,10 +2,10 @@
 //! and the oracle comparison, tallied per pair.
 
 use crate::paper_objects::paper_objects;
+use crate::rng::SplitMix64;
 use crate::soak::oracle_check::{compare, oracle_report};
 use crate::soak::pose_generator::{GapKind, PoseGenerator, SoakPose};
 use crate::soak::properties::{Property, PropertyChecker, PropertyFailure};
-use crate::rng::SplitMix64;
 use contact_pipeline::{ContactOptions, ContactPipeline, PairState, PreparedObject};
 use std::collections::BTreeMap;
 
