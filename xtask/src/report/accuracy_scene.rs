@@ -180,7 +180,8 @@ fn slug(name: &str) -> String {
         .join("-")
 }
 
-/// The closed-form scenes of the report, all at a gap of `gap` mm.
+/// The closed-form scenes of the report: four at a gap of `gap` mm, then spheres overlapping by
+/// 0.0005 mm.
 #[must_use]
 pub fn closed_form_scenes(gap: f64) -> Vec<ClosedFormScene> {
     let tilted = DVec3::new(0.3, -0.5, 0.81).normalize();
@@ -195,5 +196,14 @@ pub fn closed_form_scenes(gap: f64) -> Vec<ClosedFormScene> {
         closed_form::sphere_in_bowl(8.0, 20.0, gap, 0.3, 1.1, DQuat::from_rotation_z(0.5)),
         closed_form::crossed_cylinders(5.0, 8.0, gap, 60.0),
         closed_form::torus_on_plane(20.0, 4.0, 0.3, gap),
+        // Overlapping by 0.5 µm: still a contact in the band [-0.001, 0.1] mm, with a negative
+        // distance, and below the meshes' chordal errors.
+        closed_form::sphere_on_sphere(
+            10.0,
+            15.0,
+            -0.0005,
+            tilted,
+            [DQuat::from_rotation_x(0.4), DQuat::from_rotation_y(-0.7)],
+        ),
     ]
 }

@@ -50,7 +50,7 @@ impl ReportSettings {
     pub fn full() -> Self {
         Self {
             paper_scenes: PAPER_SCENES.to_vec(),
-            closed_form_scenes: 4,
+            closed_form_scenes: 5,
             closed_form_gap: 0.02,
             methods: MethodSettings {
                 chordal: vec![0.2, 0.05, 0.01],

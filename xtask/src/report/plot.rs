@@ -111,7 +111,6 @@ fn draw_panel(panel: &Panel, area: &Area<'_>) -> Result<(), DrawingAreaErrorKind
             .draw_series(points.iter().map(|&p| marker(p)))?
             .label(series.name.as_str())
             .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
-        chart.draw_series(LineSeries::new(points.iter().copied(), colour.mix(0.4)))?;
     }
     chart
         .configure_series_labels()
