@@ -2,7 +2,7 @@
 //! closed form where there is one, otherwise the independent oracle (`contact-oracle`: dense
 //! sampling of both exact surfaces, each minimum polished by plain Newton, cross-checked).
 
-use contact_oracle::{ClosedFormScene, OracleOptions, closed_form, find_contacts};
+use contact_oracle::{ClosedFormScene, OracleContact, OracleOptions, closed_form, find_contacts};
 use contacts::scene::Scene;
 use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectDescription, Solid};
 use std::path::Path;
@@ -16,6 +16,16 @@ pub struct TrueContact {
     pub point_b: DVec3,
     /// Signed distance.
     pub distance: f64,
+}
+
+impl From<&OracleContact> for TrueContact {
+    fn from(c: &OracleContact) -> Self {
+        Self {
+            point_a: c.point_a,
+            point_b: c.point_b,
+            distance: c.distance,
+        }
+    }
 }
 
 /// A pair of objects, their poses and their true contacts.
@@ -82,11 +92,7 @@ pub fn paper_scene(root: &Path, name: &str) -> Result<AccuracyScene, String> {
         .map_err(|e| format!("{name}: oracle: {e}"))?;
     let truth: Vec<TrueContact> = oracle
         .in_band(DELTA1, DELTA2)
-        .map(|c| TrueContact {
-            point_a: c.point_a,
-            point_b: c.point_b,
-            distance: c.distance,
-        })
+        .map(TrueContact::from)
         .collect();
     let check = &oracle.cross_check;
     Ok(AccuracyScene {
@@ -128,11 +134,7 @@ pub fn closed_form_scene(scene: ClosedFormScene) -> Result<AccuracyScene, String
         .collect();
     let found: Vec<TrueContact> = oracle
         .in_band(DELTA1, DELTA2)
-        .map(|c| TrueContact {
-            point_a: c.point_a,
-            point_b: c.point_b,
-            distance: c.distance,
-        })
+        .map(TrueContact::from)
         .collect();
     let oracle_check = (found.len() == truth.len()).then(|| {
         truth.iter().fold((0.0_f64, 0.0_f64), |(dd, dp), t| {
