@@ -51,6 +51,44 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
     }
 }
 
+/// [`settle`] for the start of a solve: a face parameter whose point lies within coordinate
+/// rounding (16 ε x max(1, |S(u, v)|) mm along the face) of a non-periodic side is put on
+/// that side first, so that the start is the edge or vertex there.
+///
+/// Why: a seed on an edge that went through a change of frame arrives a few ulps inside the
+/// face (v = 1 − 6e-16 at the goblet's rim); started there, the pair solve treats the edge's
+/// point as an interior face point, and the face-face penetration solve that follows has no
+/// witness to converge to (the witness is on the edge) and wanders off.
+pub(crate) fn settle_start(body: &Body, loc: Loc) -> Loc {
+    let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, loc) else {
+        return settle(body, loc);
+    };
+    let surface = &solid.face(id).surface;
+    let domain = surface.domain();
+    let mut w = [wrap(&domain[0], u), wrap(&domain[1], v)];
+    let at = surface.eval(w[0], w[1]);
+    let reach = 16.0 * f64::EPSILON * at.point.length().max(1.0);
+    for (i, speed) in [at.du.length(), at.dv.length()].into_iter().enumerate() {
+        let range = domain[i];
+        if range.periodic {
+            continue;
+        }
+        for bound in [range.min, range.max] {
+            if (w[i] - bound).abs() * speed <= reach {
+                w[i] = bound;
+            }
+        }
+    }
+    settle(
+        body,
+        Some(FeatureLocation::Face {
+            id,
+            u: w[0],
+            v: w[1],
+        }),
+    )
+}
+
 /// From an edge or vertex, the adjacent face location (on the shared side) whose inward
 /// direction makes the largest angle-cosine with `pull` (the direction, in A's frame, in which
 /// moving the point decreases the objective), if that component exceeds `threshold` (mm).
