@@ -53,13 +53,20 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
 
 /// [`settle`] for the start of a solve: a face parameter whose point lies within coordinate
 /// rounding (16 ε x max(1, |S(u, v)|) mm along the face) of a non-periodic side is put on
-/// that side first, so that the start is the edge or vertex there.
+/// that side first, so that the start is the edge or vertex there ([`snap_to_sides`]).
 ///
 /// Why: a seed on an edge that went through a change of frame arrives a few ulps inside the
 /// face (v = 1 − 6e-16 at the goblet's rim); started there, the pair solve treats the edge's
 /// point as an interior face point, and the face-face penetration solve that follows has no
 /// witness to converge to (the witness is on the edge) and wanders off.
 pub(crate) fn settle_start(body: &Body, loc: Loc) -> Loc {
+    snap_to_sides(body, loc, 16.0 * f64::EPSILON)
+}
+
+/// [`settle`] after putting each non-periodic face parameter whose point lies within
+/// `relative` x max(1, |S(u, v)|) mm (along the face, to first order) of its side onto that
+/// side.
+pub(crate) fn snap_to_sides(body: &Body, loc: Loc, relative: f64) -> Loc {
     let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, loc) else {
         return settle(body, loc);
     };
@@ -67,7 +74,7 @@ pub(crate) fn settle_start(body: &Body, loc: Loc) -> Loc {
     let domain = surface.domain();
     let mut w = [wrap(&domain[0], u), wrap(&domain[1], v)];
     let at = surface.eval(w[0], w[1]);
-    let reach = 16.0 * f64::EPSILON * at.point.length().max(1.0);
+    let reach = relative * at.point.length().max(1.0);
     for (i, speed) in [at.du.length(), at.dv.length()].into_iter().enumerate() {
         let range = domain[i];
         if range.periodic {

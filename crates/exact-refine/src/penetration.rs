@@ -220,7 +220,7 @@ pub(crate) fn saddle_newton(
             // Also rejects NaN: every comparison with NaN is false.
             let inertia = values.iter().all(|l| l.abs() > floor)
                 && values.iter().filter(|&&l| l < 0.0).count() == target;
-            return inertia.then_some(Solution {
+            return (inertia && !deepens_into_face(a, b, &cur)).then_some(Solution {
                 state: cur,
                 iterations: iteration,
                 outcome: Outcome::Converged,
@@ -246,6 +246,22 @@ pub(crate) fn saddle_newton(
         cur = trial;
     }
     None
+}
+
+/// Whether the witness candidate `state` has its outer point (the side with fewer parameters,
+/// A on a tie as in [`solve_penetration`]) on an edge or vertex from which the depth rises into
+/// an adjacent face (against the inner side's outward normal, the nested solver's re-entry
+/// test): then the deepest pair is on that face, not on the edge (the bowl's rim fillet edge
+/// against the pencil, where the edge's witness is 1.04e-4 mm deep and the face's 1e-3 mm).
+fn deepens_into_face(a: &Body, b: &Body, state: &State) -> bool {
+    let outer_is_a = state.na <= state.n - state.na;
+    let (outer, outer_loc, inner_normal) = if outer_is_a {
+        (a, state.la, state.outward_b(b))
+    } else {
+        (b, state.lb, state.outward_a(a))
+    };
+    let pull = inner_normal.map_or(DVec3::ZERO, |n| -n);
+    reenter(outer, &outer_loc, pull, 64.0 * EPS).is_some()
 }
 
 /// The signed depth D of the outer point below the inner feature (mm) and its scaled gradient
