@@ -28,9 +28,6 @@ fn summary() -> &'static SoakSummary {
 
 /// Every failure of the run (missed, false, state, property) is a failure of the test.
 #[test]
-#[ignore = "known pipeline failure (1 on these 252 poses): an order-dependent penetration \
-            (swap: bowl-goblet 6952665423583246700, an edge-edge penetration solve stalls from \
-            a seed on the bowl's edge); see docs/ROBUSTNESS.md, Soak"]
 fn soak_has_no_failures() {
     let summary = summary();
     let total = totals(summary);

@@ -220,3 +220,30 @@ fn a_penetration_witness_next_to_an_edge_is_found() {
     assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
     assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
 }
+
+/// Found by the swap property (bowl-goblet, seed 6952665423583246700 of the CI soak; built
+/// 2.571e-3 mm deep). Bowl first, the seed lands exactly on the side v = 0.6 of the bowl's
+/// face 1, hence on its edge 1, and the nested penetration solve between that edge and the
+/// goblet's edge 7 stalled (208 iterations): reported separated. Goblet first, the seed is at
+/// v = 0.5999999999999999, stays on the face, and the witness (goblet edge 7 against bowl
+/// face 1) is found. Fixed in `exact_refine::newton::retry_on_sides`: a penetration solve that
+/// does not converge on an edge restarts just inside each adjacent face.
+#[test]
+fn a_seed_on_a_face_side_finds_the_penetration() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [161.67400547464732, 55.69067779307774, -52.10341642649432],
+        [
+            0.2786519068333151,
+            -0.609436580074842,
+            0.09381709396166919,
+            0.7363005653708448,
+        ],
+    );
+    let (a, b) = (&objects["bowl"], &objects["goblet"]);
+    let mut scratch = QueryScratch::default();
+    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
+    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
+    assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
+}

@@ -3,7 +3,7 @@
 //! adjacent face when the objective decreases into it.
 
 use crate::feature_eval::{Body, Loc, inward_tangent, side_of, side_params, vertex_sides, wrap};
-use geom_param::{Boundary, DVec3, FeatureLocation};
+use geom_param::{Boundary, DVec3, FeatureLocation, ParamSide};
 
 /// Samples of the running parameter tried when leaving a vertex into a face: the best one is
 /// only a start, Newton then turns the running parameter to the optimum.
@@ -94,6 +94,41 @@ pub(crate) fn snap_to_sides(body: &Body, loc: Loc, relative: f64) -> Loc {
             v: w[1],
         }),
     )
+}
+
+/// For a location on an edge, the two adjacent faces' locations a relative 1e-9 of the
+/// parameter span inside the side the edge runs along (at the edge's parameter); empty
+/// otherwise. Starts for a solve that failed on the edge itself.
+pub(crate) fn into_faces(body: &Body, loc: Loc) -> Vec<Loc> {
+    let (Body::Solid { solid, .. }, Some(FeatureLocation::Edge { id, t })) = (body, loc) else {
+        return Vec::new();
+    };
+    solid
+        .edge(id)
+        .uses
+        .iter()
+        .map(|use_| {
+            let domain = solid.face(use_.face).surface.domain();
+            let [mut u, mut v] = side_params(&domain, use_.side, t);
+            let inside = |range: &geom_param::ParamRange, up: bool| {
+                1e-9 * range.span() * if up { 1.0 } else { -1.0 }
+            };
+            match use_.side {
+                ParamSide::UMin => u += inside(&domain[0], true),
+                ParamSide::UMax => u += inside(&domain[0], false),
+                ParamSide::VMin => v += inside(&domain[1], true),
+                ParamSide::VMax => v += inside(&domain[1], false),
+            }
+            settle(
+                body,
+                Some(FeatureLocation::Face {
+                    id: use_.face,
+                    u,
+                    v,
+                }),
+            )
+        })
+        .collect()
 }
 
 /// From an edge or vertex, the adjacent face location (on the shared side) whose inward

@@ -18,7 +18,7 @@
 #![allow(clippy::needless_range_loop)]
 use crate::dense_solve::{cholesky, cholesky_solve, smallest_eigenvalue_bound};
 use crate::feature_eval::{Body, FeatureEval, Loc, params, side_params, with_params};
-use crate::feature_switch::{reenter, settle, settle_start, snap_to_sides};
+use crate::feature_switch::{into_faces, reenter, settle, settle_start, snap_to_sides};
 use crate::options::NewtonOptions;
 use crate::penetration::{saddle_newton, solve_penetration};
 use crate::sym_eigen::{SymEigen, sym_eigen};
@@ -269,13 +269,18 @@ pub(crate) fn solve(
     }
 }
 
-/// A penetration solve that did not converge, restarted once with each face point within
-/// √ε x max(1, |P|) mm of a side put on that side ([`snap_to_sides`]), when that moves one.
+/// A penetration solve that did not converge, restarted from other features of its end: each
+/// face point within √ε x max(1, |P|) mm of a side put on that side ([`snap_to_sides`]), when
+/// that moves one; failing that, each edge point moved just inside each adjacent face
+/// ([`into_faces`]). The first restart that converges is the answer; `deep` when none does.
 ///
 /// Why: where the witness is on a smooth edge (equal normals on both sides, the goblet's
 /// z = 150 rim joint), the face-face solve approaches the side without reaching it (v = 1 −
 /// 4e-14) while the depth's curvature jumps there, and its trust region stalls 1.7e-7 mm short
-/// of the depth; from the edge the same witness is an interior point and converges.
+/// of the depth; from the edge the same witness is an interior point and converges. Conversely,
+/// a seed exactly on a face's side (the bowl's v = 0.6) starts edge against edge, where the
+/// nested solver (outer and inner both edges) can stall while the witness is the other edge
+/// against that face.
 fn retry_on_sides(
     a: &Body,
     b: &Body,
@@ -287,20 +292,29 @@ fn retry_on_sides(
         return deep;
     }
     let (la, lb) = (deep.state.la, deep.state.lb);
+    let feature = |l: &Loc| l.map(|l| l.feature());
     let (sa, sb) = (
         snap_to_sides(a, la, EPS.sqrt()),
         snap_to_sides(b, lb, EPS.sqrt()),
     );
-    let feature = |l: &Loc| l.map(|l| l.feature());
-    if feature(&sa) == feature(&la) && feature(&sb) == feature(&lb) {
-        return deep;
+    let mut starts = Vec::new();
+    if feature(&sa) != feature(&la) || feature(&sb) != feature(&lb) {
+        starts.push((sa, sb));
     }
-    let mut again = solve_penetration(a, b, sa, sb, base_scale, options);
-    if again.outcome != Outcome::Converged {
-        return deep;
+    starts.extend(into_faces(a, la).into_iter().map(|fa| (fa, lb)));
+    starts.extend(into_faces(b, lb).into_iter().map(|fb| (la, fb)));
+    let mut iterations = deep.iterations;
+    for (ra, rb) in starts {
+        let again = solve_penetration(a, b, ra, rb, base_scale, options);
+        iterations += again.iterations;
+        if again.outcome == Outcome::Converged {
+            return Solution {
+                iterations,
+                ..again
+            };
+        }
     }
-    again.iterations += deep.iterations;
-    again
+    deep
 }
 
 /// Where to restart when `state` sits on a crossing of the two surfaces (f = 0 with no common
