@@ -247,3 +247,31 @@ fn a_seed_on_a_face_side_finds_the_penetration() {
     assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
     assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
 }
+
+/// Found by the flip property (bowl-vase, seed 1078096001492731885 of `cargo xtask soak 1000
+/// --seed 11`): the closest pair was the bowl's face 3 against the vase's edge 0 at 0.0784 mm;
+/// B moved along that contact's normal to delta1 - 9.8e-8 mm (the pose below) was reported
+/// separated. The nested penetration solve projected the outer point onto the vase's face 0,
+/// whose closest point converged towards its side (v = 1 - 2.4e-15) without reaching it, and
+/// stalled there (228 iterations, the depth's curvature jumping at the side). Fixed in
+/// `exact_refine::penetration::solve_penetration`: an inner projection within √ε x |P| of a
+/// side is put on the side (the edge), which makes the inner side the edge.
+#[test]
+fn an_inner_projection_onto_a_face_side_becomes_the_edge() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [41.58557740542648, -31.262216804295907, 41.47861929862172],
+        [
+            -0.32948587782287037,
+            0.6185992447106525,
+            -0.40701611633072193,
+            0.5857575537760986,
+        ],
+    );
+    let (a, b) = (&objects["bowl"], &objects["vase"]);
+    let mut scratch = QueryScratch::default();
+    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
+    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
+    assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
+}

@@ -23,7 +23,7 @@
 
 use crate::dense_solve::{cholesky, cholesky_solve, lu_solve};
 use crate::feature_eval::{Body, Loc};
-use crate::feature_switch::{reenter, settle};
+use crate::feature_switch::{reenter, settle, snap_to_sides};
 use crate::newton::{EPS, Outcome, Reentry, Solution, State, minimize_projection, take_step};
 use crate::options::NewtonOptions;
 use crate::sym_eigen::sym_eigen;
@@ -62,7 +62,10 @@ pub(crate) fn solve_penetration(
             Reentry::Allowed,
         );
         *steps += projection.iterations;
-        let li = projection.state.la;
+        // A projection tending to a face's side (the closest point is on the edge, v = 1 − 2e-15
+        // after many steps) is the edge: on the face the depth's curvature jumps there and the
+        // outer iteration stalls. Within √ε x |P| it is put on the side.
+        let li = snap_to_sides(inner, projection.state.la, EPS.sqrt());
         if outer_is_a {
             State::new(a, b, lo, li, base_scale)
         } else {
