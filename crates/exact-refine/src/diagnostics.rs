@@ -5,7 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::feature_eval::Body;
-use crate::newton::{EPS, Outcome, Solution, State};
+use crate::newton::{EPS, Outcome, Solution, State, is_touch};
 use crate::refiner::{RefineDiagnostics, RefineStatus};
 use crate::sym_eigen::sym_eigen;
 use geom_param::DVec3;
@@ -72,12 +72,24 @@ pub(crate) fn diagnose(
     } else {
         rounding + 0.5 * kappa * point_error_estimate * point_error_estimate
     };
+    // At a gap within its own error estimate the sign of d, hence the index the second-order
+    // test wants (0 separated, min(n_a, n_b) penetrating), is not known, and the eigenvalues it
+    // counts (|d| x relative curvature along the sliding directions) are rounding. The pair is
+    // then judged as at d = 0, where the Hessian is JᵀJ (positive semidefinite) and f = 0 its
+    // global minimum: a touch when the normals are opposed (a crossing of the surfaces has
+    // them apart and restarted in `newton::solve`). Stationarity bounds the angle between d
+    // and each normal by the residual over |d|.
+    let gap = state.d.length();
+    let touch = converged
+        && index > 0
+        && gap <= error_estimate
+        && is_touch(a, b, state, residual / gap.max(f64::MIN_POSITIVE));
     RefineDiagnostics {
         iterations: solution.iterations,
         gradient_norm: state.gradient_norm(),
         condition,
         converged,
-        is_local_minimum: converged && second_order,
+        is_local_minimum: converged && (second_order || touch),
         error_estimate,
         point_error_estimate,
         status,

@@ -3,7 +3,7 @@
 //! adjacent face when the objective decreases into it.
 
 use crate::feature_eval::{Body, Loc, inward_tangent, side_of, side_params, vertex_sides, wrap};
-use geom_param::{Boundary, DVec3, FeatureLocation};
+use geom_param::{Boundary, DVec3, FeatureLocation, ParamSide};
 
 /// Samples of the running parameter tried when leaving a vertex into a face: the best one is
 /// only a start, Newton then turns the running parameter to the optimum.
@@ -49,6 +49,86 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
         }),
         other => other,
     }
+}
+
+/// [`settle`] for the start of a solve: a face parameter whose point lies within coordinate
+/// rounding (16 ε x max(1, |S(u, v)|) mm along the face) of a non-periodic side is put on
+/// that side first, so that the start is the edge or vertex there ([`snap_to_sides`]).
+///
+/// Why: a seed on an edge that went through a change of frame arrives a few ulps inside the
+/// face (v = 1 − 6e-16 at the goblet's rim); started there, the pair solve treats the edge's
+/// point as an interior face point, and the face-face penetration solve that follows has no
+/// witness to converge to (the witness is on the edge) and wanders off.
+pub(crate) fn settle_start(body: &Body, loc: Loc) -> Loc {
+    snap_to_sides(body, loc, 16.0 * f64::EPSILON)
+}
+
+/// [`settle`] after putting each non-periodic face parameter whose point lies within
+/// `relative` x max(1, |S(u, v)|) mm (along the face, to first order) of its side onto that
+/// side.
+pub(crate) fn snap_to_sides(body: &Body, loc: Loc, relative: f64) -> Loc {
+    let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, loc) else {
+        return settle(body, loc);
+    };
+    let surface = &solid.face(id).surface;
+    let domain = surface.domain();
+    let mut w = [wrap(&domain[0], u), wrap(&domain[1], v)];
+    let at = surface.eval(w[0], w[1]);
+    let reach = relative * at.point.length().max(1.0);
+    for (i, speed) in [at.du.length(), at.dv.length()].into_iter().enumerate() {
+        let range = domain[i];
+        if range.periodic {
+            continue;
+        }
+        for bound in [range.min, range.max] {
+            if (w[i] - bound).abs() * speed <= reach {
+                w[i] = bound;
+            }
+        }
+    }
+    settle(
+        body,
+        Some(FeatureLocation::Face {
+            id,
+            u: w[0],
+            v: w[1],
+        }),
+    )
+}
+
+/// For a location on an edge, the two adjacent faces' locations a relative 1e-9 of the
+/// parameter span inside the side the edge runs along (at the edge's parameter); empty
+/// otherwise. Starts for a solve that failed on the edge itself.
+pub(crate) fn into_faces(body: &Body, loc: Loc) -> Vec<Loc> {
+    let (Body::Solid { solid, .. }, Some(FeatureLocation::Edge { id, t })) = (body, loc) else {
+        return Vec::new();
+    };
+    solid
+        .edge(id)
+        .uses
+        .iter()
+        .map(|use_| {
+            let domain = solid.face(use_.face).surface.domain();
+            let [mut u, mut v] = side_params(&domain, use_.side, t);
+            let inside = |range: &geom_param::ParamRange, up: bool| {
+                1e-9 * range.span() * if up { 1.0 } else { -1.0 }
+            };
+            match use_.side {
+                ParamSide::UMin => u += inside(&domain[0], true),
+                ParamSide::UMax => u += inside(&domain[0], false),
+                ParamSide::VMin => v += inside(&domain[1], true),
+                ParamSide::VMax => v += inside(&domain[1], false),
+            }
+            settle(
+                body,
+                Some(FeatureLocation::Face {
+                    id: use_.face,
+                    u,
+                    v,
+                }),
+            )
+        })
+        .collect()
 }
 
 /// From an edge or vertex, the adjacent face location (on the shared side) whose inward

@@ -18,7 +18,7 @@
 #![allow(clippy::needless_range_loop)]
 use crate::dense_solve::{cholesky, cholesky_solve, smallest_eigenvalue_bound};
 use crate::feature_eval::{Body, FeatureEval, Loc, params, side_params, with_params};
-use crate::feature_switch::{reenter, settle};
+use crate::feature_switch::{into_faces, reenter, settle, settle_start, snap_to_sides};
 use crate::options::NewtonOptions;
 use crate::penetration::{saddle_newton, solve_penetration};
 use crate::sym_eigen::{SymEigen, sym_eigen};
@@ -242,8 +242,8 @@ pub(crate) fn solve(
     let first = minimize(
         a,
         b,
-        settle(a, la),
-        settle(b, lb),
+        settle_start(a, la),
+        settle_start(b, lb),
         base_scale,
         options,
         Reentry::Allowed,
@@ -255,7 +255,7 @@ pub(crate) fn solve(
         }
         let mut deep = solve_penetration(a, b, first.state.la, first.state.lb, base_scale, options);
         deep.iterations += first.iterations;
-        return deep;
+        return retry_on_sides(a, b, deep, base_scale, options);
     }
     // Minimising f can end on the intersection curve of two faces (f = 0 with the normals not
     // opposed) without ever seeing a penetrating pair: restart once inside the lens.
@@ -263,10 +263,58 @@ pub(crate) fn solve(
         Some((ra, rb)) if first.outcome == Outcome::Converged => {
             let mut deep = solve_penetration(a, b, ra, rb, base_scale, options);
             deep.iterations += first.iterations;
-            deep
+            retry_on_sides(a, b, deep, base_scale, options)
         }
         _ => first,
     }
+}
+
+/// A penetration solve that did not converge, restarted from other features of its end: each
+/// face point within √ε x max(1, |P|) mm of a side put on that side ([`snap_to_sides`]), when
+/// that moves one; failing that, each edge point moved just inside each adjacent face
+/// ([`into_faces`]). The first restart that converges is the answer; `deep` when none does.
+///
+/// Why: where the witness is on a smooth edge (equal normals on both sides, the goblet's
+/// z = 150 rim joint), the face-face solve approaches the side without reaching it (v = 1 −
+/// 4e-14) while the depth's curvature jumps there, and its trust region stalls 1.7e-7 mm short
+/// of the depth; from the edge the same witness is an interior point and converges. Conversely,
+/// a seed exactly on a face's side (the bowl's v = 0.6) starts edge against edge, where the
+/// nested solver (outer and inner both edges) can stall while the witness is the other edge
+/// against that face.
+fn retry_on_sides(
+    a: &Body,
+    b: &Body,
+    deep: Solution,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Solution {
+    if deep.outcome == Outcome::Converged {
+        return deep;
+    }
+    let (la, lb) = (deep.state.la, deep.state.lb);
+    let feature = |l: &Loc| l.map(|l| l.feature());
+    let (sa, sb) = (
+        snap_to_sides(a, la, EPS.sqrt()),
+        snap_to_sides(b, lb, EPS.sqrt()),
+    );
+    let mut starts = Vec::new();
+    if feature(&sa) != feature(&la) || feature(&sb) != feature(&lb) {
+        starts.push((sa, sb));
+    }
+    starts.extend(into_faces(a, la).into_iter().map(|fa| (fa, lb)));
+    starts.extend(into_faces(b, lb).into_iter().map(|fb| (la, fb)));
+    let mut iterations = deep.iterations;
+    for (ra, rb) in starts {
+        let again = solve_penetration(a, b, ra, rb, base_scale, options);
+        iterations += again.iterations;
+        if again.outcome == Outcome::Converged {
+            return Solution {
+                iterations,
+                ..again
+            };
+        }
+    }
+    deep
 }
 
 /// Where to restart when `state` sits on a crossing of the two surfaces (f = 0 with no common
@@ -288,22 +336,7 @@ fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
     if va.len() > 1 && vb.len() > 1 {
         return None;
     }
-    // Largest angle between opposed normals that still counts as a touch: cos = 1 - 1e-9.
-    let touch_angle = (2e-9_f64).sqrt();
-    let arc_excess = |n: DVec3, arc: &[FaceView]| match arc {
-        [one] => angle_between(n, one.normal),
-        [n1, n2, ..] => {
-            angle_between(n, n1.normal) + angle_between(n, n2.normal)
-                - angle_between(n1.normal, n2.normal)
-        }
-        [] => f64::INFINITY,
-    };
-    let touching = if va.len() == 1 {
-        arc_excess(-va[0].normal, &vb) <= touch_angle
-    } else {
-        arc_excess(-vb[0].normal, &va) <= touch_angle
-    };
-    if touching {
+    if cones_opposed(&va, &vb, TOUCH_ANGLE) {
         return None; // a touch, not a crossing
     }
     // The view of one side that cuts the other side's single face most steeply.
@@ -343,6 +376,42 @@ fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
     let ra = settle(a, shift(&fa.eval, &fa.loc, na, nb));
     let rb = settle(b, shift(&fb.eval, &fb.loc, nb, na));
     Some((ra, rb))
+}
+
+/// Largest angle (rad) between opposed normals that still counts as a touch: cos = 1 − 1e-9.
+pub(crate) const TOUCH_ANGLE: f64 = 4.47213595499958e-5; // √(2e-9)
+
+/// Whether the outward-normal cones of two points hold opposite directions to `tolerance`
+/// (rad): a face's cone is its normal, an edge's the arc between its two faces' normals. With
+/// one face, its normal negated must lie in the other's cone (for two faces, the angle between
+/// the normals is at least π − `tolerance`); two edges are never judged opposed here.
+fn cones_opposed(va: &[FaceView], vb: &[FaceView], tolerance: f64) -> bool {
+    let arc_excess = |n: DVec3, arc: &[FaceView]| match arc {
+        [one] => angle_between(n, one.normal),
+        [n1, n2, ..] => {
+            angle_between(n, n1.normal) + angle_between(n, n2.normal)
+                - angle_between(n1.normal, n2.normal)
+        }
+        [] => f64::INFINITY,
+    };
+    match (va, vb) {
+        ([one], other) => arc_excess(-one.normal, other) <= tolerance,
+        (other, [one]) => arc_excess(-one.normal, other) <= tolerance,
+        _ => false,
+    }
+}
+
+/// Whether the final pair of `state` is a touch: both points on a face or an edge (not two
+/// edges) whose normal cones are opposed ([`cones_opposed`]) to [`TOUCH_ANGLE`] plus
+/// `misalignment` (rad, what the stationarity tolerance allows between d and the normals).
+pub(crate) fn is_touch(a: &Body, b: &Body, state: &State, misalignment: f64) -> bool {
+    let (Some(va), Some(vb)) = (
+        face_views(a, &state.la, &state.ea),
+        face_views(b, &state.lb, &state.eb),
+    ) else {
+        return false;
+    };
+    cones_opposed(&va, &vb, TOUCH_ANGLE + misalignment)
 }
 
 /// One face through a point: its location, evaluation and outward normal (A's frame).

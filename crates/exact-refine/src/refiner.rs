@@ -87,7 +87,11 @@ pub struct RefineDiagnostics {
     /// *signed* distance: separated, no eigenvalue of the Hessian below −(rounding floor), i.e.
     /// a local minimum of |P_a − P_b|, not a saddle or maximum; penetrating, exactly the
     /// min(n_a, n_b) relative-sliding directions are negative (the deepest pair) and the others
-    /// are not. False when not converged.
+    /// are not. Where |distance| is within `error_estimate` and the pair penetrates, the sign of
+    /// the distance and those eigenvalues (|d| x relative curvature) are rounding: the pair is
+    /// then judged as at distance 0, a minimum when its outward normals are opposed (a touch;
+    /// a face's normal, negated, within 4.5e-5 rad plus the residual's angle of the other
+    /// face's normal or of the arc of an edge's two faces' normals). False when not converged.
     pub is_local_minimum: bool,
     /// Estimated absolute error of `distance` (mm): rounding of the coordinates
     /// (16 ε x coordinate scale) plus the change of the gap over `point_error_estimate`.
