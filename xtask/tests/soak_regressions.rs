@@ -275,3 +275,243 @@ fn an_inner_projection_onto_a_face_side_becomes_the_edge() {
     assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
     assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
 }
+
+/// Found by the flip property (goblet-goblet, seed 10541403850172320131 of
+/// `cargo xtask soak 1000 --seed 11`): the closest pair is the two rims (edge 7 of each, z = 150)
+/// crossing at 0.0488355 mm; B moved along that contact's normal to delta1 - 1.5e-7 mm (the first
+/// pose below, where that pair is a critical pair at -1.00015e-3 mm by construction) is reported
+/// separated in both orders, and moved to delta1 + 1.5e-7 mm (the second pose) separated goblet
+/// first, penetration the other way round, instead of the contact at -9.9985e-4 mm. Not fixed:
+/// the penetration solve ends on edge 7 against the other goblet's face 7 at v = 1 - 2e-16,
+/// unconverged, and the pair is reported separated.
+#[test]
+#[ignore = "not fixed: the edge-edge rim penetration solve ends unconverged on edge 7 against face 7 at v = 1 - 2e-16 and the pair is reported separated"]
+fn crossing_rims_moved_to_delta1_flip_the_state() {
+    let (pipeline, objects) = setup();
+    let rotation = [
+        0.7271627999377562,
+        -0.4611155181494053,
+        -0.5085101361234947,
+        -0.004917597803121201,
+    ];
+    let into = pose(
+        [125.23732727900044, -131.22055754520457, 212.89332930055457],
+        rotation,
+    );
+    let kept = pose(
+        [125.23732748862051, -131.22055770914412, 212.89332943905814],
+        rotation,
+    );
+    let g = &objects["goblet"];
+    let delta1 = pipeline.options().delta1;
+    let mut scratch = QueryScratch::default();
+    let r = query(&pipeline, g, &DPose3::IDENTITY, g, &into, &mut scratch);
+    assert_eq!(r.state, PairState::Penetration, "{r:?}");
+    let r = query(&pipeline, g, &DPose3::IDENTITY, g, &kept, &mut scratch);
+    assert_eq!(r.state, PairState::Contact, "{r:?}");
+    let rim_point = DVec3::new(31.508290134558084, -24.6419896273923, 150.0);
+    assert!(
+        r.contacts
+            .iter()
+            .any(|c| (c.distance - (delta1 + 1.5e-7)).abs() < 1e-7
+                && c.point_a.distance(rim_point) < 1e-4),
+        "{r:?}"
+    );
+}
+
+/// Found by the swap property (goblet-goblet, seed 15738302282556059162 of
+/// `cargo xtask soak 1000 --seed 11`; built 1.953e-3 mm deep, with the witness on the first
+/// goblet's rim, z = 150). First goblet first, Stage 3 finds the penetration; the other order is
+/// reported separated. Not analysed.
+#[test]
+#[ignore = "not fixed, not analysed: the rim penetration (-1.953e-3 mm) is reported separated when the goblets are swapped"]
+fn swapping_two_goblets_keeps_a_rim_penetration() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [-19.46896617651577, 34.89126569712594, 213.01867389136282],
+        [
+            0.23567868608686526,
+            -0.9502039254552238,
+            -0.0857382736246507,
+            -0.18497839173729785,
+        ],
+    );
+    let g = &objects["goblet"];
+    let mut scratch = QueryScratch::default();
+    let ab = query(&pipeline, g, &DPose3::IDENTITY, g, &pose_b, &mut scratch);
+    let ba = query(&pipeline, g, &pose_b, g, &DPose3::IDENTITY, &mut scratch);
+    assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
+    assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
+}
+
+/// Found by the swap property and the oracle (goblet-bowl, seed 8595849821463493159 of
+/// `cargo xtask soak 1000 --seed 11`; built as a touch at 2.239e-10 mm, the oracle's minimum is
+/// 2.668e-10 mm between the bowl's face 0 and the goblet's face 7). Bowl first, the pipeline
+/// reports that contact at 2.668e-10 mm; goblet first, it reports separated. Not analysed.
+#[test]
+#[ignore = "not fixed, not analysed: the touch at 2.7e-10 mm (goblet face 7 / bowl face 0) is reported separated goblet first"]
+fn a_goblet_touching_a_bowl_is_a_contact_in_both_orders() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [-29.865116491822945, 18.441587790055102, 115.3702398746137],
+        [
+            -0.8042717060156233,
+            -0.43254816648853933,
+            0.13997185104104728,
+            0.3826969917392409,
+        ],
+    );
+    let (a, b) = (&objects["goblet"], &objects["bowl"]);
+    let mut scratch = QueryScratch::default();
+    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
+    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    for report in [&ab, &ba] {
+        assert_eq!(report.state, PairState::Contact, "{report:?}");
+        assert!(
+            report.contacts.iter().any(|c| c.distance.abs() < 1e-9),
+            "{report:?}"
+        );
+    }
+}
+
+/// Found by the oracle (bowl-paperweight, seed 5618258536318199318 of
+/// `cargo xtask soak 1000 --seed 11`): besides the contact the pose was built with (bowl face 4
+/// against the paperweight's face 1 at 0.03326 mm, reported), the oracle finds a second local
+/// minimum 4.6 mm away, the bowl's face 4 against the paperweight's face 3 at 0.0730838 mm,
+/// inside the band; the pipeline does not report it. Not analysed (Stage 1/2 may not have seeded
+/// it).
+#[test]
+#[ignore = "not fixed, not analysed: a second minimum at 0.0731 mm (bowl face 4 / paperweight face 3) is not reported"]
+fn a_second_contact_in_the_band_is_reported() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [-14.13872657433006, -20.735789749114346, 72.12623322873607],
+        [
+            -0.25871576848907074,
+            -0.5949659295245138,
+            -0.08637166352349065,
+            0.7560566311992282,
+        ],
+    );
+    let (a, b) = (&objects["bowl"], &objects["paperweight"]);
+    let report = query(
+        &pipeline,
+        a,
+        &DPose3::IDENTITY,
+        b,
+        &pose_b,
+        &mut QueryScratch::default(),
+    );
+    let oracle_a = DVec3::new(-33.28678828500792, -25.838393333200578, 41.804827385957026);
+    assert!(
+        report
+            .contacts
+            .iter()
+            .any(|c| (c.distance - 7.308380531285347e-2).abs() < 1e-7
+                && c.point_a.distance(oracle_a) < 1e-3),
+        "{report:?}"
+    );
+}
+
+/// Found by the oracle (pencil-bowl, seed 16555674050705579074 of
+/// `cargo xtask soak 1000 --seed 11`; built as a touch at 1.9e-12 mm): the pipeline reports one
+/// contact at 2.84e-10 mm between the pencil's face 6 and the bowl's face 2 at v = 3.9e-4 (next to
+/// its joint with face 1), condition 8.9e10 and point error estimate 7.3e-4 mm: a nearly flat
+/// minimum. The oracle finds another local minimum 9.4e-3 mm away across that joint, face 6
+/// against the bowl's face 1 at 4.127e-6 mm, which the pipeline does not report. Not analysed:
+/// it may be the same flat valley of the distance, split by the smooth joint.
+#[test]
+#[ignore = "not fixed, not analysed: the oracle's minimum at 4.1e-6 mm on the bowl's face 1, 9.4e-3 mm from the reported flat contact on face 2, is not reported"]
+fn a_flat_touch_across_a_smooth_joint_reports_both_minima() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [-9.745112151206866, -27.525932834638805, 70.53579620995133],
+        [
+            0.32487827239326744,
+            -0.30400308482004557,
+            0.87388732255707,
+            0.19584989155140667,
+        ],
+    );
+    let (a, b) = (&objects["pencil"], &objects["bowl"]);
+    let report = query(
+        &pipeline,
+        a,
+        &DPose3::IDENTITY,
+        b,
+        &pose_b,
+        &mut QueryScratch::default(),
+    );
+    let oracle_a = DVec3::new(0.40797060016420383, -3.476141537596198, 91.63791297373353);
+    assert!(
+        report
+            .contacts
+            .iter()
+            .any(|c| (c.distance - 4.127391009015136e-6).abs() < 1e-7
+                && c.point_a.distance(oracle_a) < 1e-3),
+        "{report:?}"
+    );
+}
+
+/// Two "missed" contacts of `cargo xtask soak 1000 --seed 11` that are the oracle's, not the
+/// pipeline's (pencil-goblet seed 7302112096488778657 and pencil-pencil seed
+/// 12710718749562303040, built as overlaps of -7.239e-5 and -8.137e-5 mm with the pencil's apex,
+/// vertex 1 at z = 177.5, inside the other solid). The oracle reports contacts at -6.5e-10,
+/// -6.2e-10 and -2.2e-13 mm on the pencil's cone (face 8) 2.8e-5 to 4.8e-5 mm from the apex:
+/// points of the curve where the cone crosses the other surface, at distance zero trivially.
+/// They are no touch: the contact normal there would be the other surface's normal, which makes
+/// 38.5 deg (pencil-goblet) and 71 deg (pencil-pencil) with the pencil's axis, while the cone's
+/// normals make 74 deg with it (half-angle 16 deg, from the oracle's points). The pipeline
+/// reports the apex penetration alone, as it should; this keeps it from reporting the crossing.
+#[test]
+fn a_pencil_apex_inside_a_surface_is_one_contact_not_a_crossing() {
+    let (pipeline, objects) = setup();
+    let cases = [
+        (
+            "goblet",
+            pose(
+                [-7.129217804605351, 31.678192586920083, 168.7026926745926],
+                [
+                    -0.1914257699959785,
+                    0.9329799519694516,
+                    -0.20974367287186252,
+                    0.22116097190677222,
+                ],
+            ),
+            -7.239e-5,
+        ),
+        (
+            "pencil",
+            pose(
+                [56.338720810237724, -80.24909286563573, 199.89163098370508],
+                [
+                    0.2107172064873394,
+                    -0.7492078137857953,
+                    -0.5850671826055373,
+                    0.22799627736105738,
+                ],
+            ),
+            -8.137e-5,
+        ),
+    ];
+    let pencil = &objects["pencil"];
+    for (other, pose_b, built) in cases {
+        let report = query(
+            &pipeline,
+            pencil,
+            &DPose3::IDENTITY,
+            &objects[other],
+            &pose_b,
+            &mut QueryScratch::default(),
+        );
+        assert_eq!(report.state, PairState::Contact, "{other}: {report:?}");
+        assert_eq!(report.contacts.len(), 1, "{other}: {report:?}");
+        let c = &report.contacts[0];
+        // The aimed gap is quoted to 4 digits.
+        assert!((c.distance - built).abs() < 1e-8, "{other}: {c:?}");
+        assert!(
+            c.point_a.distance(DVec3::new(0.0, 0.0, 177.5)) < 1e-9,
+            "{other}: {c:?}"
+        );
+    }
+}
