@@ -22,7 +22,7 @@ use crate::feature_switch::{into_faces, reenter, settle, settle_start, snap_to_s
 use crate::options::NewtonOptions;
 use crate::penetration::{saddle_newton, solve_penetration};
 use crate::sym_eigen::{SymEigen, sym_eigen};
-use geom_param::{DVec3, FeatureLocation};
+use geom_param::{DVec3, FeatureLocation, ParamRange};
 use std::f64::consts::PI;
 
 /// Rounding unit.
@@ -355,7 +355,7 @@ fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
     let opposed = -na.dot(nb);
     let angle = opposed.clamp(-1.0, 1.0).acos();
     let length = angle / state.curvature.max(f64::MIN_POSITIVE);
-    let shift = |e: &FeatureEval, loc: &Loc, own: DVec3, other: DVec3| {
+    let shift = |body: &Body, e: &FeatureEval, loc: &Loc, own: DVec3, other: DVec3| {
         let w = (other - own * other.dot(own)).normalize_or_zero() * -length;
         // Least-squares parameter step for the tangent displacement w.
         let (e11, e12, e22) = (e.d[0].dot(e.d[0]), e.d[0].dot(e.d[1]), e.d[1].dot(e.d[1]));
@@ -365,17 +365,36 @@ fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
         if det.is_nan() || det <= 0.0 {
             return *loc;
         }
-        with_params(
-            loc,
-            [
-                x[0] + (e22 * r1 - e12 * r2) / det,
-                x[1] + (e11 * r2 - e12 * r1) / det,
-            ],
-        )
+        let step = [(e22 * r1 - e12 * r2) / det, (e11 * r2 - e12 * r1) / det];
+        let fraction = inside_fraction(&body.domains(loc), x, step);
+        with_params(loc, [x[0] + fraction * step[0], x[1] + fraction * step[1]])
     };
-    let ra = settle(a, shift(&fa.eval, &fa.loc, na, nb));
-    let rb = settle(b, shift(&fb.eval, &fb.loc, nb, na));
+    let ra = settle(a, shift(a, &fa.eval, &fa.loc, na, nb));
+    let rb = settle(b, shift(b, &fb.eval, &fb.loc, nb, na));
     Some((ra, rb))
+}
+
+/// The fraction of the parameter `step` from `x` to take so that the point stays on its face:
+/// 1 when the whole step stays inside the non-periodic ranges of `domains`, otherwise half the
+/// fraction that reaches the first side crossed.
+///
+/// Why: the crossing restart's step (the lens size angle / curvature) is a local estimate; a step
+/// that leaves the face is clamped onto its side (an edge) far outside the lens, where the
+/// penetration solve can converge to a deep critical pair that is no witness (two goblets' rims
+/// crossing: -6.07 mm between two edges instead of the -1.95e-3 mm witness).
+fn inside_fraction(domains: &[ParamRange; 2], x: [f64; 2], step: [f64; 2]) -> f64 {
+    let mut reach = 1.0_f64;
+    for ((range, xi), si) in domains.iter().zip(x).zip(step) {
+        if range.periodic || si == 0.0 || range.max <= range.min {
+            continue;
+        }
+        let bound = if si > 0.0 { range.max } else { range.min };
+        let to_side = (bound - xi) / si;
+        if to_side < 1.0 {
+            reach = reach.min(0.5 * to_side.max(0.0));
+        }
+    }
+    reach
 }
 
 /// Largest angle (rad) between opposed normals that still counts as a touch: cos = 1 − 1e-9.
