@@ -36,6 +36,22 @@ fn query(
         .expect("unit quaternions")
 }
 
+/// The pair queried as (A at the identity, B at `pose_b`) and swapped, with one scratch (so the
+/// second query is warm-started by the first, as in the soak).
+fn both_orders(
+    pipeline: &ContactPipeline,
+    objects: &BTreeMap<String, PreparedObject>,
+    a: &str,
+    b: &str,
+    pose_b: &DPose3,
+) -> (PairReport, PairReport) {
+    let (a, b) = (&objects[a], &objects[b]);
+    let mut scratch = QueryScratch::default();
+    let ab = query(pipeline, a, &DPose3::IDENTITY, b, pose_b, &mut scratch);
+    let ba = query(pipeline, b, pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    (ab, ba)
+}
+
 /// Found by the flip property (paperweight-pencil, seed 4415940930031423605 of
 /// `cargo xtask soak 36 --seed 1`): B was set 1.672e-3 mm into A along the normal of a
 /// face-face contact, and the pipeline reported a single contact at distance 2.5e-15 between
@@ -59,10 +75,8 @@ fn an_edge_crossing_a_face_is_not_a_contact() {
             -0.19453851051594917,
         ],
     );
+    let (ab, ba) = both_orders(&pipeline, &objects, "paperweight", "pencil", &pose_b);
     let (a, b) = (&objects["paperweight"], &objects["pencil"]);
-    let mut scratch = QueryScratch::default();
-    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
-    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
     for (report, first, pose_first, second, pose_second) in [
         (&ab, a, DPose3::IDENTITY, b, pose_b),
         (&ba, b, pose_b, a, DPose3::IDENTITY),
@@ -104,10 +118,7 @@ fn swapping_goblet_and_jar_keeps_the_state() {
             0.5419613965018225,
         ],
     );
-    let (a, b) = (&objects["goblet"], &objects["jar"]);
-    let mut scratch = QueryScratch::default();
-    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
-    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    let (ab, ba) = both_orders(&pipeline, &objects, "goblet", "jar", &pose_b);
     assert_eq!(ab.state, ba.state);
 }
 
@@ -184,10 +195,7 @@ fn a_penetration_witness_on_a_smooth_edge_is_found() {
             -0.24807333851043178,
         ],
     );
-    let (a, b) = (&objects["jar"], &objects["goblet"]);
-    let mut scratch = QueryScratch::default();
-    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
-    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    let (ab, ba) = both_orders(&pipeline, &objects, "jar", "goblet", &pose_b);
     assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
     assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
 }
@@ -213,10 +221,7 @@ fn a_penetration_witness_next_to_an_edge_is_found() {
             -0.781190082791519,
         ],
     );
-    let (a, b) = (&objects["bowl"], &objects["pencil"]);
-    let mut scratch = QueryScratch::default();
-    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
-    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    let (ab, ba) = both_orders(&pipeline, &objects, "bowl", "pencil", &pose_b);
     assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
     assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
 }
@@ -240,10 +245,7 @@ fn a_seed_on_a_face_side_finds_the_penetration() {
             0.7363005653708448,
         ],
     );
-    let (a, b) = (&objects["bowl"], &objects["goblet"]);
-    let mut scratch = QueryScratch::default();
-    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
-    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    let (ab, ba) = both_orders(&pipeline, &objects, "bowl", "goblet", &pose_b);
     assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
     assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
 }
@@ -268,10 +270,7 @@ fn an_inner_projection_onto_a_face_side_becomes_the_edge() {
             0.5857575537760986,
         ],
     );
-    let (a, b) = (&objects["bowl"], &objects["vase"]);
-    let mut scratch = QueryScratch::default();
-    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
-    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    let (ab, ba) = both_orders(&pipeline, &objects, "bowl", "vase", &pose_b);
     assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
     assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
 }
@@ -371,10 +370,7 @@ fn a_goblet_touching_a_bowl_is_a_contact_in_both_orders() {
             0.3826969917392409,
         ],
     );
-    let (a, b) = (&objects["goblet"], &objects["bowl"]);
-    let mut scratch = QueryScratch::default();
-    let ab = query(&pipeline, a, &DPose3::IDENTITY, b, &pose_b, &mut scratch);
-    let ba = query(&pipeline, b, &pose_b, a, &DPose3::IDENTITY, &mut scratch);
+    let (ab, ba) = both_orders(&pipeline, &objects, "goblet", "bowl", &pose_b);
     for report in [&ab, &ba] {
         assert_eq!(report.state, PairState::Contact, "{report:?}");
         assert!(
