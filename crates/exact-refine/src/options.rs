@@ -10,7 +10,10 @@ pub struct NewtonOptions {
     /// residual from ~1e-7 to rounding; a looser value only saves that step).
     pub angle_tolerance: f64,
     /// Cap on Newton steps per solve (the seed projections and the pair solve each have their
-    /// own). Default 64: well-seeded solves take 2-6, flat (near-conformal) ones up to ~40.
+    /// own). Default 64: well-seeded solves take 2-6, flat (near-conformal) ones up to ~40. A
+    /// pair solve that reaches the cap continues once from where it stopped (at an exact touch
+    /// Newton converges only linearly), so it takes at most twice this many steps before it
+    /// reports [`crate::RefineStatus::IterationLimit`].
     pub max_iterations: u32,
     /// Cap on feature switches (face to edge or vertex and back) per solve, so a minimum that
     /// sits on a crease cannot make the iteration bounce for ever. Default 8.
