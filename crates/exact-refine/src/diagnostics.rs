@@ -73,15 +73,15 @@ pub(crate) fn diagnose(
         rounding + 0.5 * kappa * point_error_estimate * point_error_estimate
     };
     // At a gap within its own error estimate the sign of d, hence the index the second-order
-    // test wants (0 separated, min(n_a, n_b) penetrating), is not known, and the eigenvalues it
-    // counts (|d| x relative curvature along the sliding directions) are rounding. The pair is
-    // then judged as at d = 0, where the Hessian is JᵀJ (positive semidefinite) and f = 0 its
-    // global minimum: a touch when the normals are opposed (a crossing of the surfaces has
-    // them apart and restarted in `newton::solve`). Stationarity bounds the angle between d
-    // and each normal by the residual over |d|.
+    // test wants (0 separated, min(n_a, n_b) penetrating), is not known (whichever index
+    // `State::sign` gave), and the eigenvalues it counts (|d| x relative curvature along the
+    // sliding directions) are rounding. The pair is then judged as at d = 0, where the Hessian
+    // is JᵀJ (positive semidefinite) and f = 0 its global minimum: a touch when the normals are
+    // opposed. Stationarity bounds the angle between d and each normal by the residual over
+    // |d|, so at such a gap a crossing at a small angle passes this test too: the refiner then
+    // probes the surfaces next to the pair (`crossing_probe`) before calling it a touch.
     let gap = state.d.length();
     let touch = converged
-        && index > 0
         && gap <= error_estimate
         && is_touch(a, b, state, residual / gap.max(f64::MIN_POSITIVE));
     RefineDiagnostics {

@@ -23,6 +23,7 @@
 //!
 //! Units: millimetres and radians. Frames: results in A's object frame.
 
+mod crossing_probe;
 mod dense_solve;
 mod diagnostics;
 mod feature_eval;

@@ -299,7 +299,7 @@ pub(crate) fn solve(
 /// a seed exactly on a face's side (the bowl's v = 0.6) starts edge against edge, where the
 /// nested solver (outer and inner both edges) can stall while the witness is the other edge
 /// against that face.
-fn retry_on_sides(
+pub(crate) fn retry_on_sides(
     a: &Body,
     b: &Body,
     deep: Solution,
@@ -375,21 +375,32 @@ fn crossing_restart(a: &Body, b: &Body, state: &State) -> Option<(Loc, Loc)> {
     let length = angle / state.curvature.max(f64::MIN_POSITIVE);
     let shift = |body: &Body, e: &FeatureEval, loc: &Loc, own: DVec3, other: DVec3| {
         let w = (other - own * other.dot(own)).normalize_or_zero() * -length;
-        // Least-squares parameter step for the tangent displacement w.
-        let (e11, e12, e22) = (e.d[0].dot(e.d[0]), e.d[0].dot(e.d[1]), e.d[1].dot(e.d[1]));
-        let (r1, r2) = (e.d[0].dot(w), e.d[1].dot(w));
-        let det = e11 * e22 - e12 * e12;
-        let (x, _) = params(loc);
-        if det.is_nan() || det <= 0.0 {
-            return *loc;
-        }
-        let step = [(e22 * r1 - e12 * r2) / det, (e11 * r2 - e12 * r1) / det];
-        let fraction = inside_fraction(&body.domains(loc), x, step);
-        with_params(loc, [x[0] + fraction * step[0], x[1] + fraction * step[1]])
+        slide_on_face(body, loc, e, w)
     };
     let ra = settle(a, shift(a, &fa.eval, &fa.loc, na, nb));
     let rb = settle(b, shift(b, &fb.eval, &fb.loc, nb, na));
     Some((ra, rb))
+}
+
+/// The face location (`loc`, evaluated as `eval`) moved by the tangent displacement `w` (mm,
+/// A's frame) to first order: the least-squares parameter step, cut by [`inside_fraction`] so
+/// that the point stays on its face. `loc` unchanged where the face's first fundamental form
+/// is singular (a pole) or the location is not a face.
+pub(crate) fn slide_on_face(body: &Body, loc: &Loc, eval: &FeatureEval, w: DVec3) -> Loc {
+    if eval.n != 2 {
+        return *loc;
+    }
+    let e = eval;
+    let (e11, e12, e22) = (e.d[0].dot(e.d[0]), e.d[0].dot(e.d[1]), e.d[1].dot(e.d[1]));
+    let (r1, r2) = (e.d[0].dot(w), e.d[1].dot(w));
+    let det = e11 * e22 - e12 * e12;
+    let (x, _) = params(loc);
+    if det.is_nan() || det <= 0.0 {
+        return *loc;
+    }
+    let step = [(e22 * r1 - e12 * r2) / det, (e11 * r2 - e12 * r1) / det];
+    let fraction = inside_fraction(&body.domains(loc), x, step);
+    with_params(loc, [x[0] + fraction * step[0], x[1] + fraction * step[1]])
 }
 
 /// The fraction of the parameter `step` from `x` to take so that the point stays on its face:

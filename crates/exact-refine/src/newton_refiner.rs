@@ -1,9 +1,11 @@
 //! [`NewtonRefiner`]: the default [`Refiner`] (seed projection, then safeguarded Newton).
 
+use crate::crossing_probe::overlap_near;
 use crate::diagnostics::diagnose;
 use crate::feature_eval::{Body, Frame};
-use crate::newton::{State, solve};
+use crate::newton::{Outcome, Solution, State, retry_on_sides, solve};
 use crate::options::NewtonOptions;
+use crate::penetration::solve_penetration;
 use crate::projection::project;
 use crate::refiner::{RefineDiagnostics, RefineStatus, RefinedContact, Refiner};
 use geom_param::{DPose3, DVec3, FeatureLocation, Seed, SeedPoint, Solid};
@@ -82,8 +84,8 @@ impl Refiner for NewtonRefiner {
             .la;
         }
         let solution = solve(&body_a, &body_b, la, lb, base, options);
-        let (distance, normal) = signed_distance(&body_a, &body_b, &solution.state);
-        let diagnostics = diagnose(&body_a, &body_b, &solution, normal);
+        let (solution, distance, normal, diagnostics) =
+            check_touch(&body_a, &body_b, solution, base, options);
         let state = &solution.state;
         RefinedContact {
             point_a: state.ea.point,
@@ -95,6 +97,45 @@ impl Refiner for NewtonRefiner {
             diagnostics,
         }
     }
+}
+
+/// The final answer from a pair solve's `solution`: its signed distance, normal and
+/// diagnostics; but a pair judged a local minimum whose gap is within its own error estimate
+/// is a touch only if the surfaces do not cross next to it ([`overlap_near`]). Where they do,
+/// the answer is the penetration witness solved from the overlapping probe when that
+/// converges deeper, and otherwise the same pair marked as no local minimum.
+fn check_touch(
+    a: &Body,
+    b: &Body,
+    solution: Solution,
+    base: f64,
+    options: &NewtonOptions,
+) -> (Solution, f64, DVec3, RefineDiagnostics) {
+    let (distance, normal) = signed_distance(a, b, &solution.state);
+    let mut diagnostics = diagnose(a, b, &solution, normal);
+    let state = &solution.state;
+    if !diagnostics.is_local_minimum || state.d.length() > diagnostics.error_estimate {
+        return (solution, distance, normal, diagnostics);
+    }
+    let Some((la, lb, _)) = overlap_near(a, b, state, base, options) else {
+        return (solution, distance, normal, diagnostics);
+    };
+    let deep = retry_on_sides(
+        a,
+        b,
+        solve_penetration(a, b, la, lb, base, options),
+        base,
+        options,
+    );
+    let (deep_distance, deep_normal) = signed_distance(a, b, &deep.state);
+    if deep.outcome == Outcome::Converged && deep_distance < distance {
+        let iterations = solution.iterations + deep.iterations;
+        let deep = Solution { iterations, ..deep };
+        let deep_diagnostics = diagnose(a, b, &deep, deep_normal);
+        return (deep, deep_distance, deep_normal, deep_diagnostics);
+    }
+    diagnostics.is_local_minimum = false;
+    (solution, distance, normal, diagnostics)
 }
 
 /// The signed distance and unit normal (A to B) at a final state.
