@@ -1,5 +1,6 @@
 //! Closed-form answers for every feature pair kind: sphere-sphere (separated and penetrating),
-//! sphere-torus, crossed cylinders, point-torus, point-curve, curve-curve and curve-surface.
+//! sphere-torus, crossed cylinders, point-torus, point-curve, curve-curve (separated, and two
+//! crossing rims penetrating) and curve-surface.
 
 mod support;
 
