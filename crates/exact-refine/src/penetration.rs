@@ -271,8 +271,8 @@ pub(crate) fn saddle_newton(
 /// of either edge). `None` when the minimisation does not converge or the end fails them.
 ///
 /// Why: the nested solver cannot represent this pair (see [`saddle_newton`]), and plain Newton
-/// on the edges converges only from close by (a start 0.05 rad along two crossing rims
-/// already leaves its quadratic regime).
+/// on the edges converges only from close by (from the rims next to where the nested solver
+/// stalled, 0.09 mm deep against a 0.05 mm witness in `closed_form.rs`, it did not).
 pub(crate) fn edge_pair_witness(
     a: &Body,
     b: &Body,
