@@ -276,17 +276,20 @@ fn an_inner_projection_onto_a_face_side_becomes_the_edge() {
 }
 
 /// Found by the flip property (goblet-goblet, seed 10541403850172320131 of
-/// `cargo xtask soak 1000 --seed 11`): the closest pair is the two rims (edge 7 of each, z = 150)
-/// crossing at 0.0488355 mm; B moved along that contact's normal to delta1 - 1.5e-7 mm (the first
-/// pose below, where that pair is a critical pair at -1.00015e-3 mm by construction) is reported
-/// separated in both orders, and moved to delta1 + 1.5e-7 mm (the second pose) separated goblet
-/// first, penetration the other way round, instead of the contact at -9.9985e-4 mm. Not fixed:
-/// the penetration solve stalls (135 iterations) on edge 7 against the other goblet's face 7 at
-/// v = 1 - 3.9e-8, 0.0122 mm off; `retry_on_sides` restarting from just inside edge 7's faces
-/// reaches the iteration limit at the same place. (Restarting edge 7 against edge 7, tried while
-/// analysing, stalls too, on face 8 at v = 7.7e-7 with |d| = 1.0033e-3 mm, near the witness.)
+/// `cargo xtask soak 1000 --seed 11`): the closest pair is the two rims (edge 7 of each, z = 150,
+/// sharp) crossing at 0.0488355 mm, tangents 72 degrees apart; B moved along that contact's
+/// normal to delta1 - 1.5e-7 mm (the first pose below, where that pair is a critical pair at
+/// -1.00015e-3 mm by construction) was reported separated in both orders, and moved to
+/// delta1 + 1.5e-7 mm (the second pose) separated goblet first, penetration the other way
+/// round, instead of the contact at -9.9985e-4 mm. The witness is edge against edge, which the
+/// nested penetration solver cannot represent (the closest boundary point to a point inside a
+/// convex wedge is on a face, never on the edge): it stalled on edge 7 against face 7 at
+/// v = 1 - 3.9e-8, 0.0122 mm off, and the fast Newton witness solve, which starts on the two
+/// edges next to the witness, rejected it for having no negative eigenvalue (it wanted
+/// min(n_a, n_b) = 1, right only with a face on one side). Fixed in exact-refine (fix 9 in
+/// docs/ROBUSTNESS.md): a witness between two edges has no negative eigenvalue
+/// (`State::witness_index`), and its depth may not rise into a face along d.
 #[test]
-#[ignore = "not fixed: the rim-rim penetration solve stalls on edge 7 against face 7 at v = 1 - 3.9e-8, and its restarts from the sides do not converge either"]
 fn crossing_rims_moved_to_delta1_flip_the_state() {
     let (pipeline, objects) = setup();
     let rotation = [
@@ -303,20 +306,27 @@ fn crossing_rims_moved_to_delta1_flip_the_state() {
         [125.23732748862051, -131.22055770914412, 212.89332943905814],
         rotation,
     );
-    let g = &objects["goblet"];
     let delta1 = pipeline.options().delta1;
-    let mut scratch = QueryScratch::default();
-    let r = query(&pipeline, g, &DPose3::IDENTITY, g, &into, &mut scratch);
-    assert_eq!(r.state, PairState::Penetration, "{r:?}");
-    let r = query(&pipeline, g, &DPose3::IDENTITY, g, &kept, &mut scratch);
-    assert_eq!(r.state, PairState::Contact, "{r:?}");
+    let (ab, ba) = both_orders(&pipeline, &objects, "goblet", "goblet", &into);
+    assert_eq!(ab.state, PairState::Penetration, "{ab:?}");
+    assert_eq!(ba.state, PairState::Penetration, "{ba:?}");
+    // The first goblet's rim point of the moved pair (world frame = its frame).
     let rim_point = DVec3::new(31.508290134558084, -24.6419896273923, 150.0);
+    let (ab, ba) = both_orders(&pipeline, &objects, "goblet", "goblet", &kept);
+    let expected = delta1 + 1.5e-7;
+    assert_eq!(ab.state, PairState::Contact, "{ab:?}");
     assert!(
-        r.contacts
+        ab.contacts
             .iter()
-            .any(|c| (c.distance - (delta1 + 1.5e-7)).abs() < 1e-7
-                && c.point_a.distance(rim_point) < 1e-4),
-        "{r:?}"
+            .any(|c| (c.distance - expected).abs() < 1e-7 && c.point_a.distance(rim_point) < 1e-4),
+        "{ab:?}"
+    );
+    assert_eq!(ba.state, PairState::Contact, "{ba:?}");
+    assert!(
+        ba.contacts
+            .iter()
+            .any(|c| (c.distance - expected).abs() < 1e-7 && c.point_b.distance(rim_point) < 1e-4),
+        "{ba:?}"
     );
 }
 

@@ -31,7 +31,13 @@ pub(crate) fn diagnose(
         _ => f64::INFINITY,
     };
     let converged = solution.outcome == Outcome::Converged;
-    let index = state.index(a, b);
+    // The inertia the answer must have: 0 for a closest pair, the witness's for a penetration.
+    let penetrating = state.penetrating(a, b);
+    let index = if penetrating {
+        state.witness_index()
+    } else {
+        0
+    };
     let second_order = match index {
         0 => values.first().is_none_or(|&l| l >= -floor),
         k => values[k - 1] <= floor && values.get(k).is_none_or(|&l| l >= -floor),
@@ -60,7 +66,7 @@ pub(crate) fn diagnose(
         } else {
             f64::INFINITY
         };
-        let quartic = if index == 0 {
+        let quartic = if !penetrating {
             (2.0 * residual / (kappa * kappa)).cbrt()
         } else {
             f64::INFINITY
@@ -73,8 +79,8 @@ pub(crate) fn diagnose(
         rounding + 0.5 * kappa * point_error_estimate * point_error_estimate
     };
     // At a gap within its own error estimate the sign of d, hence the index the second-order
-    // test wants (0 separated, min(n_a, n_b) penetrating), is not known (whichever index
-    // `State::sign` gave), and the eigenvalues it counts (|d| x relative curvature along the
+    // test wants (0 separated, the witness's when penetrating), is not known (whichever
+    // `State::penetrating` says), and the eigenvalues it counts (|d| x relative curvature along the
     // sliding directions) are rounding. The pair is then judged as at d = 0, where the Hessian
     // is JᵀJ (positive semidefinite) and f = 0 its global minimum: a touch when the normals are
     // opposed. Stationarity bounds the angle between d and each normal by the residual over

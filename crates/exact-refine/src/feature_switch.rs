@@ -3,7 +3,7 @@
 //! adjacent face when the objective decreases into it.
 
 use crate::feature_eval::{Body, Loc, inward_tangent, side_of, side_params, vertex_sides, wrap};
-use geom_param::{Boundary, DVec3, FeatureLocation, ParamSide};
+use geom_param::{Boundary, DVec3, FeatureLocation, ParamSide, SurfacePoint};
 
 /// Samples of the running parameter tried when leaving a vertex into a face: the best one is
 /// only a start, Newton then turns the running parameter to the optimum.
@@ -67,6 +67,17 @@ pub(crate) fn settle_start(body: &Body, loc: Loc) -> Loc {
 /// `relative` x max(1, |S(u, v)|) mm (along the face, to first order) of its side onto that
 /// side.
 pub(crate) fn snap_to_sides(body: &Body, loc: Loc, relative: f64) -> Loc {
+    snap_within(body, loc, |at| relative * at.point.length().max(1.0))
+}
+
+/// [`settle`] after putting each non-periodic face parameter whose point lies within `reach`
+/// mm (along the face, to first order) of its side onto that side.
+pub(crate) fn snap_within_distance(body: &Body, loc: Loc, reach: f64) -> Loc {
+    snap_within(body, loc, |_| reach)
+}
+
+/// The snap of [`snap_to_sides`] with the reach (mm) a function of the face's point.
+fn snap_within(body: &Body, loc: Loc, reach: impl Fn(&SurfacePoint) -> f64) -> Loc {
     let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, loc) else {
         return settle(body, loc);
     };
@@ -74,7 +85,7 @@ pub(crate) fn snap_to_sides(body: &Body, loc: Loc, relative: f64) -> Loc {
     let domain = surface.domain();
     let mut w = [wrap(&domain[0], u), wrap(&domain[1], v)];
     let at = surface.eval(w[0], w[1]);
-    let reach = relative * at.point.length().max(1.0);
+    let reach = reach(&at);
     for (i, speed) in [at.du.length(), at.dv.length()].into_iter().enumerate() {
         let range = domain[i];
         if range.periodic {

@@ -18,9 +18,11 @@
 #![allow(clippy::needless_range_loop)]
 use crate::dense_solve::{cholesky, cholesky_solve, smallest_eigenvalue_bound};
 use crate::feature_eval::{Body, FeatureEval, Loc, params, side_params, with_params};
-use crate::feature_switch::{into_faces, reenter, settle, settle_start, snap_to_sides};
+use crate::feature_switch::{
+    into_faces, reenter, settle, settle_start, snap_to_sides, snap_within_distance,
+};
 use crate::options::NewtonOptions;
-use crate::penetration::{saddle_newton, solve_penetration};
+use crate::penetration::{edge_pair_witness, saddle_newton, solve_penetration};
 use crate::sym_eigen::{SymEigen, sym_eigen};
 use geom_param::{DVec3, FeatureLocation, ParamRange};
 use std::f64::consts::PI;
@@ -180,24 +182,28 @@ impl State {
         b.outward_at(&self.lb, &self.eb)
     }
 
-    /// [`Self::target_index`] of this pair: only a pair with parameters on both sides can be
-    /// a penetration witness (with none on one side the index is 0 whatever the sign), so the
-    /// outward directions are evaluated only then.
-    pub(crate) fn index(&self, a: &Body, b: &Body) -> usize {
-        if self.na == 0 || self.na == self.n {
-            0
-        } else {
-            self.target_index(self.sign(a, b))
-        }
+    /// Whether the pair penetrates ([`Self::sign`] negative) with parameters on both sides:
+    /// only such a pair can be a penetration witness (with no parameters on one side the
+    /// witness test does not apply), so the outward directions are evaluated only then.
+    pub(crate) fn penetrating(&self, a: &Body, b: &Body) -> bool {
+        self.na > 0 && self.na < self.n && self.sign(a, b) < 0.0
     }
 
-    /// The number of negative eigenvalues the witness has: 0 when separated, min(n_a, n_b)
-    /// when penetrating.
-    pub(crate) fn target_index(&self, sign: f64) -> usize {
-        if sign < 0.0 {
-            self.na.min(self.n - self.na)
-        } else {
+    /// The number of negative eigenvalues of f's Hessian at a penetration witness on these
+    /// features: the dimension of the tangent directions the two points share (both normal
+    /// to the connecting vector), along which moving both together rolls the pair shallower.
+    /// With a face on either side that is min(n_a, n_b): the face's tangent plane holds every
+    /// tangent of the other feature normal to d (face-face 2, face-edge 1). Two edges share
+    /// none unless they are parallel: their witness (the common perpendicular of two crossing
+    /// rims, d inside both edges' normal cones) is a minimum of f over the two edge
+    /// parameters, like the common perpendicular of two skew lines, so 0 (parallel edges
+    /// are degenerate, and the inertia test then rejects them).
+    pub(crate) fn witness_index(&self) -> usize {
+        let nb = self.n - self.na;
+        if self.na == 1 && nb == 1 {
             0
+        } else {
+            self.na.min(nb)
         }
     }
 
@@ -267,7 +273,10 @@ pub(crate) fn solve(
         };
     }
     if first.outcome == Outcome::Penetrating {
-        if let Some(mut fast) = saddle_newton(a, b, &first.state, base_scale, options) {
+        let (la, lb) = (first.state.la, first.state.lb);
+        if let Some(mut fast) = saddle_newton(a, b, &first.state, base_scale, options)
+            .or_else(|| edge_pair_witness(a, b, la, lb, base_scale, options))
+        {
             fast.iterations += first.iterations;
             return fast;
         }
@@ -287,10 +296,12 @@ pub(crate) fn solve(
     }
 }
 
-/// A penetration solve that did not converge, restarted from other features of its end: each
-/// face point within √ε x max(1, |P|) mm of a side put on that side ([`snap_to_sides`]), when
-/// that moves one; failing that, each edge point moved just inside each adjacent face
-/// ([`into_faces`]). The first restart that converges is the answer; `deep` when none does.
+/// A penetration solve that did not converge, restarted from other features of its end: first
+/// Newton on two edges (each face point within the gap |d| of a side put on it, when that
+/// gives an edge on both sides); then the nested solver from each face point within
+/// √ε x max(1, |P|) mm of a side put on that side ([`snap_to_sides`]), when that moves one;
+/// failing that, from each edge point moved just inside each adjacent face ([`into_faces`]).
+/// The first restart that converges is the answer; `deep` when none does.
 ///
 /// Why: where the witness is on a smooth edge (equal normals on both sides, the goblet's
 /// z = 150 rim joint), the face-face solve approaches the side without reaching it (v = 1 −
@@ -310,6 +321,24 @@ pub(crate) fn retry_on_sides(
         return deep;
     }
     let (la, lb) = (deep.state.la, deep.state.lb);
+    // First the witness between two edges, which the nested solver cannot represent and
+    // approaches by stalling next to the inner side's edge (2.3e-6 mm from the goblet's rim):
+    // each face point within the gap |d| of a side put on it, and f minimised on the two
+    // edges from there ([`edge_pair_witness`], which accepts only a converged witness).
+    let reach = deep.state.d.length();
+    if let Some(witness) = edge_pair_witness(
+        a,
+        b,
+        snap_within_distance(a, la, reach),
+        snap_within_distance(b, lb, reach),
+        base_scale,
+        options,
+    ) {
+        return Solution {
+            iterations: deep.iterations + witness.iterations,
+            ..witness
+        };
+    }
     let feature = |l: &Loc| l.map(|l| l.feature());
     let (sa, sb) = (
         snap_to_sides(a, la, EPS.sqrt()),
@@ -510,8 +539,10 @@ fn angle_between(a: DVec3, b: DVec3) -> f64 {
 pub(crate) enum Reentry {
     /// Continue into a face when f decreases into it.
     Allowed,
-    /// Stay on the feature reached (a seed projection only places the start: the pair solve
-    /// tests re-entry itself, with the other feature's point as the pull).
+    /// Stay on the features reached and minimise f there, penetrating or not (no hand-over to
+    /// the penetration solver): a seed projection only places the start (the pair solve tests
+    /// re-entry itself, with the other feature's point as the pull), and on two edges the
+    /// minimum of f is the candidate witness of [`crate::penetration::edge_pair_witness`].
     Never,
 }
 
@@ -537,8 +568,9 @@ pub(crate) fn minimize_projection(
 }
 
 /// The separated regime: minimises f from (`la`, `lb`), handing over (outcome
-/// [`Outcome::Penetrating`]) as soon as the pair penetrates with parameters on both sides.
-fn minimize(
+/// [`Outcome::Penetrating`]) as soon as the pair penetrates with parameters on both sides,
+/// unless `reentry` is [`Reentry::Never`].
+pub(crate) fn minimize(
     a: &Body,
     b: &Body,
     la: Loc,
@@ -561,7 +593,7 @@ fn minimize(
     // (its model failed there, e.g. approaching an intersection curve, where |d| has a kink).
     let mut distance_ok = true;
     for iteration in 0..options.max_iterations {
-        if fresh && cur.index(a, b) > 0 {
+        if fresh && reentry == Reentry::Allowed && cur.penetrating(a, b) {
             return end(cur, iteration, Outcome::Penetrating);
         }
         fresh = true;

@@ -87,7 +87,8 @@ pub struct RefineDiagnostics {
     /// *signed* distance: separated, no eigenvalue of the Hessian below −(rounding floor), i.e.
     /// a local minimum of |P_a − P_b|, not a saddle or maximum; penetrating, exactly the
     /// min(n_a, n_b) relative-sliding directions are negative (the deepest pair) and the others
-    /// are not. Where |distance| is within `error_estimate` and the pair penetrates, the sign of
+    /// are not, except between two edges, which share no sliding direction: there none is
+    /// negative (two crossing rims, d inside both edges' normal cones). Where |distance| is within `error_estimate` and the pair penetrates, the sign of
     /// the distance and those eigenvalues (|d| x relative curvature) are rounding: the pair is
     /// then judged as at distance 0, a minimum when its outward normals are opposed (a touch;
     /// a face's normal, negated, within 4.5e-5 rad plus the residual's angle of the other

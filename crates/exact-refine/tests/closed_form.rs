@@ -1,10 +1,11 @@
 //! Closed-form answers for every feature pair kind: sphere-sphere (separated and penetrating),
-//! sphere-torus, crossed cylinders, point-torus, point-curve, curve-curve and curve-surface.
+//! sphere-torus, crossed cylinders, point-torus, point-curve, curve-curve (separated, and two
+//! crossing rims penetrating) and curve-surface.
 
 mod support;
 
 use geom_param::{DQuat, DVec3, FeatureId, Seed};
-use std::f64::consts::{FRAC_PI_2, PI};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use support::*;
 
 /// (u, v) of the point of the origin-centred sphere face in direction `dir`.
@@ -231,6 +232,69 @@ fn curve_curve_rim_against_rim() {
             DVec3::new(r + cc - r2, 0.0, h),
             &what,
         );
+    }
+}
+
+#[test]
+fn crossing_rims_penetrating_edge_against_edge() {
+    // A's top rim (radius r at z = h) and B's top rim cross, B's rim point P_b = P_a − δ n
+    // inside A: n lies strictly inside A's normal cone at P_a (between the side's radial
+    // normal and the top's +z, at angle β from the radial), −n strictly inside B's (angle β2
+    // from B's radial), and B's rim tangent is normal to n and turned by γ from A's. Both
+    // tangents are normal to d = δ n, so (P_a, P_b) is a critical pair of the two rims; the
+    // translation along n that separates them is δ: the witness is edge against edge, at
+    // distance −δ, with no face involved (the closest boundary point of B to P_a is on one
+    // of B's faces, never on its rim).
+    let mut rng = Rng(7);
+    let (r, h, r2, h2) = (5.0, 10.0, 2.0, 6.0);
+    let (a, b) = (cylinder(r, h), cylinder(r2, h2));
+    for k in 0..60 {
+        let depth = [1e-3, 0.05, 2e-6][k % 3];
+        let phi = rng.range(0.0, std::f64::consts::TAU);
+        let beta = rng.range(0.3, FRAC_PI_2 - 0.3);
+        let beta2 = rng.range(0.3, FRAC_PI_2 - 0.3);
+        let gamma = rng.range(0.5, PI - 0.5);
+        let radial = DVec3::new(phi.cos(), phi.sin(), 0.0);
+        let tangent_a = DVec3::new(-phi.sin(), phi.cos(), 0.0);
+        let n = radial * beta.cos() + DVec3::Z * beta.sin();
+        let pa = radial * r + DVec3::Z * h;
+        let pb = pa - n * depth;
+        // B's frame at its rim point (r2, 0, h2): local x its radial, y its tangent, z its axis.
+        let tangent_b = tangent_a * gamma.cos() + n.cross(tangent_a) * gamma.sin();
+        let k_dir = tangent_b.cross(n);
+        let radial_b = -n * beta2.cos() - k_dir * beta2.sin();
+        let axis_b = radial_b.cross(tangent_b);
+        let q1 = DQuat::from_rotation_arc(DVec3::Z, axis_b);
+        let rotation = DQuat::from_rotation_arc(q1 * DVec3::X, radial_b) * q1;
+        assert!(
+            (rotation * DVec3::Y).distance(tangent_b) < 1e-12,
+            "frame {k}"
+        );
+        let pose_ab = pose(rotation, pb - rotation * DVec3::new(r2, 0.0, h2));
+        // Seeds on the rims a little off the witness, or on their faces next to it.
+        let offset = rng.range(-0.05, 0.05);
+        let seed = if k % 2 == 0 {
+            Seed {
+                a: seed_point(&a, edge(1, phi + offset), DVec3::ZERO),
+                b: seed_point(&b, edge(1, TAU - offset), DVec3::ZERO),
+            }
+        } else {
+            Seed {
+                a: seed_point(&a, face(1, phi + offset, 0.999), DVec3::ZERO),
+                b: seed_point(&b, face(2, offset, 0.001), DVec3::ZERO),
+            }
+        };
+        let c = refine(&a, &b, &pose_ab, &seed);
+        let what = format!("case {k}, depth {depth}, beta {beta}, beta2 {beta2}, gamma {gamma}");
+        assert_converged(&c, &what);
+        for location in [c.location_a, c.location_b] {
+            assert_eq!(
+                location.feature(),
+                FeatureId::Edge(geom_param::EdgeId(1)),
+                "{what}: {c:?}"
+            );
+        }
+        assert_answer(&c, -depth, pa, pb, &what);
     }
 }
 
