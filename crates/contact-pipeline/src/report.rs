@@ -27,7 +27,10 @@ pub struct Contact {
     pub point_b: DVec3,
     /// Signed distance (mm): point_b = point_a + distance * normal.
     pub distance: f64,
-    /// Unit normal from A to B (world frame): A's outward normal at `point_a`.
+    /// Unit normal from A to B (world frame): A's outward normal at `point_a` when that is on
+    /// a face, else B's outward normal at `point_b` negated when that is on a face, else for
+    /// two edges their common normal turned away from A, else the direction of the connecting
+    /// vector.
     pub normal: DVec3,
     /// The exact feature of A and its parameters.
     pub location_a: FeatureLocation,

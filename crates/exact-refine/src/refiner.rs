@@ -61,7 +61,9 @@ pub struct RefinedContact {
     /// Signed distance (mm): (point_b − point_a) · normal; negative when penetrating.
     pub distance: f64,
     /// Unit normal from A to B in A's frame: A's outward normal at `point_a` when that is on a
-    /// face, otherwise the direction of point_b − point_a (reversed when penetrating).
+    /// face, otherwise B's outward normal at `point_b` negated when that is on a face, otherwise
+    /// for two edges their common normal (tangent x tangent) turned away from A, otherwise the
+    /// direction of point_b − point_a (reversed when penetrating).
     pub normal: DVec3,
     /// How far to trust the above.
     pub diagnostics: RefineDiagnostics,

@@ -94,9 +94,15 @@ impl ContactTolerances {
         };
         let point = pe + ROUNDING * coord;
         let kappa = local_curvature(a, &c.location_a) + local_curvature(b, &c.location_b);
-        // The pipeline's normal is A's outward normal when A's point is on a face, otherwise
-        // the direction of the connecting vector, good to the point error over the distance.
-        let direction = if matches!(c.location_a, FeatureLocation::Face { .. }) {
+        // The pipeline's normal is a face's outward normal when either point is on a face, the
+        // common normal of two edges, otherwise the direction of the connecting vector, good
+        // to the point error over the distance.
+        let exact = |l: &FeatureLocation| matches!(l, FeatureLocation::Face { .. });
+        let edge = |l: &FeatureLocation| matches!(l, FeatureLocation::Edge { .. });
+        let direction = if exact(&c.location_a)
+            || exact(&c.location_b)
+            || (edge(&c.location_a) && edge(&c.location_b))
+        {
             0.0
         } else {
             2.0 * point / c.distance.abs()
