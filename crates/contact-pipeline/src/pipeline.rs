@@ -357,24 +357,28 @@ fn take_seeds(out: &MeshOutput, seeds: &mut Vec<Seed>, probes: &mut Vec<RegionPr
     }));
 }
 
-/// A refined centre seed farther than this fraction of its region's radius from the region's
-/// centre (B's point, which lies on the loop's side) leaves part of the region unexplained.
+/// A refined centre seed whose contact lies farther than this fraction of its region's radius
+/// from the region's centre, across the contact normal, leaves part of the region unexplained.
 /// One isolated minimum makes the region about an ellipse centred on it, so its centre seed
-/// converges within chordal noise of the centre; 1/4 leaves room for a region made lopsided
-/// by a face boundary or the mesh without refining a probe for every contact.
+/// converges near the centre (the centre, in the loop's plane, stands off a curved surface by
+/// the loop's sagitta, which lies along the normal and is not counted); 1/4 leaves room for a
+/// region made lopsided by a face boundary or the mesh without refining a probe for every
+/// contact.
 const PROBE_DISPLACEMENT: f64 = 0.25;
 
 /// The end seed of `probes`'s region to refine after its centre seed gave `refined` (A's
-/// frame), or `None` when `refined` accounts for the region: it lies within
-/// [`PROBE_DISPLACEMENT`] x radius of the centre, or is not finite. The end chosen is the one
-/// farther from the refined contact.
+/// frame), or `None` when `refined` accounts for the region: B's contact point lies within
+/// [`PROBE_DISPLACEMENT`] x radius of the centre across the contact normal (the loop lies on
+/// B's mesh), or is not finite. The end chosen is the one farther from the refined contact.
 fn far_end<'p>(
     probes: &'p RegionProbes,
     refined: &RefinedContact,
     pose_ab: &DPose3,
 ) -> Option<&'p Seed> {
     let found = refined.point_b;
-    let displacement = found.distance(probes.centre);
+    let offset = probes.centre - found;
+    let n = refined.normal;
+    let displacement = (offset - n * n.dot(offset)).length();
     if !(displacement > PROBE_DISPLACEMENT * probes.radius) {
         return None;
     }
