@@ -477,13 +477,15 @@ fn a_second_contact_in_the_band_is_reported() {
 fn positive_definite(mut h: [[f64; 4]; 4]) -> bool {
     for k in 0..4 {
         let pivot = h[k][k];
-        if !(pivot > 0.0) {
+        let positive = pivot > 0.0;
+        if !positive {
             return false;
         }
-        for i in k + 1..4 {
-            let f = h[i][k] / pivot;
-            for c in k..4 {
-                h[i][c] -= f * h[k][c];
+        let row_k = h[k];
+        for row in h.iter_mut().skip(k + 1) {
+            let f = row[k] / pivot;
+            for (x, y) in row.iter_mut().zip(row_k).skip(k) {
+                *x -= f * y;
             }
         }
     }

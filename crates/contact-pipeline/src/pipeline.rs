@@ -379,7 +379,9 @@ fn far_end<'p>(
     let offset = probes.centre - found;
     let n = refined.normal;
     let displacement = (offset - n * n.dot(offset)).length();
-    if !(displacement > PROBE_DISPLACEMENT * probes.radius) {
+    // Written so that a NaN displacement (a non-finite contact) refines no probe.
+    let off_centre = displacement > PROBE_DISPLACEMENT * probes.radius;
+    if !off_centre {
         return None;
     }
     let [e1, e2] = &probes.ends;
