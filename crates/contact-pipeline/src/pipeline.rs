@@ -9,7 +9,7 @@ use geom_param::{
     ComponentId, DPose3, LoadError, MeshOptions, ObjectDescription, ObjectModel, Seed,
 };
 use mesh_narrowphase::{
-    ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshVerdict,
+    ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshVerdict, RegionProbes,
 };
 use std::time::Instant;
 
@@ -37,6 +37,7 @@ pub struct QueryScratch<
     pairs: Vec<(ComponentId, ComponentId)>,
     mesh_out: MeshOutput,
     seeds: Vec<Seed>,
+    probes: Vec<RegionProbes>,
 }
 
 impl<B: BroadPhase, M: MeshPhase, R: Refiner> Default for QueryScratch<B, M, R> {
@@ -48,6 +49,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> Default for QueryScratch<B, M, R> 
             pairs: Vec::new(),
             mesh_out: MeshOutput::default(),
             seeds: Vec::new(),
+            probes: Vec::new(),
         }
     }
 }
@@ -197,6 +199,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             delta2: options.delta2,
         };
         scratch.seeds.clear();
+        scratch.probes.clear();
         let mut penetrating = false;
         let mut mesh_overlaps = 0;
         for &(ca, cb) in &scratch.pairs {
@@ -232,10 +235,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                         penetrating = true;
                     } else {
                         mesh_overlaps += 1;
-                        scratch.seeds.extend_from_slice(&scratch.mesh_out.seeds);
+                        take_seeds(&scratch.mesh_out, &mut scratch.seeds, &mut scratch.probes);
                     }
                 }
-                MeshVerdict::Seeds => scratch.seeds.extend_from_slice(&scratch.mesh_out.seeds),
+                MeshVerdict::Seeds => {
+                    take_seeds(&scratch.mesh_out, &mut scratch.seeds, &mut scratch.probes);
+                }
                 MeshVerdict::InvalidInput(e) => return Err(QueryError::MeshPhase(e.to_string())),
             }
         }
@@ -253,7 +258,8 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         // Stage 3.
         let start = Instant::now();
         report.stats.refine_ran = true;
-        for seed in &scratch.seeds {
+        let scale = a.model.profile.scale().max(b.model.profile.scale());
+        for (i, seed) in scratch.seeds.iter().enumerate() {
             let refined = self.refiner.refine(
                 &a.model.solid,
                 &b.model.solid,
@@ -262,37 +268,30 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 &mut scratch.refine,
             );
             report.stats.refined += 1;
-            if refined.distance < options.delta1 {
-                report.state = PairState::Penetration;
-                let witness = *pose_a * (0.5 * (refined.point_a + refined.point_b));
-                let tolerance = merge_tolerance(
-                    &refined,
-                    a.model.profile.scale().max(b.model.profile.scale()),
+            if self.take(&refined, pose_a, scale, report) {
+                break;
+            }
+            // A contact region whose centre seed converged far from the centre holds more than
+            // that minimum: refine its end seed farther from the contact found. (A penetration
+            // has decided the state; its witnesses come from the mesh-mesh regions.)
+            let far_end = scratch
+                .probes
+                .iter()
+                .find(|p| p.centre_seed == i)
+                .filter(|_| refined.distance >= options.delta1)
+                .and_then(|p| far_end(p, &refined, &pose_ab));
+            if let Some(end) = far_end {
+                let refined = self.refiner.refine(
+                    &a.model.solid,
+                    &b.model.solid,
+                    &pose_ab,
+                    end,
+                    &mut scratch.refine,
                 );
-                if report
-                    .penetration_witnesses
-                    .iter()
-                    .all(|w| w.distance(witness) > tolerance)
-                {
-                    report.penetration_witnesses.push(witness);
-                }
-                if options.depth == QueryDepth::StateOnly {
+                report.stats.refined += 1;
+                if self.take(&refined, pose_a, scale, report) {
                     break;
                 }
-                continue;
-            }
-            if refined.distance > options.delta2 || !refined.diagnostics.is_local_minimum {
-                continue;
-            }
-            let tolerance = merge_tolerance(
-                &refined,
-                a.model.profile.scale().max(b.model.profile.scale()),
-            );
-            if insert_or_merge(&mut report.contacts, to_world(&refined, pose_a), tolerance) {
-                report.stats.merged += 1;
-            }
-            if options.depth == QueryDepth::StateOnly {
-                break;
             }
         }
         report.stats.refine_us = micros(start);
@@ -306,6 +305,88 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         report.stats.mesh_overlaps = mesh_overlaps;
         Ok(())
     }
+}
+
+impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
+    /// Enters one refined seed into `report`: below delta1 a penetration witness (merged with
+    /// an earlier one within the merge tolerance), in the band and a local minimum a contact
+    /// (merged likewise), anything else dropped. `scale` is the larger object's size (mm).
+    /// Returns true when the query may stop (depth [`QueryDepth::StateOnly`] and the state is
+    /// known).
+    fn take(
+        &self,
+        refined: &RefinedContact,
+        pose_a: &DPose3,
+        scale: f64,
+        report: &mut PairReport,
+    ) -> bool {
+        let options = &self.options;
+        let state_only = options.depth == QueryDepth::StateOnly;
+        if refined.distance < options.delta1 {
+            report.state = PairState::Penetration;
+            let witness = *pose_a * (0.5 * (refined.point_a + refined.point_b));
+            let tolerance = merge_tolerance(refined, scale);
+            if report
+                .penetration_witnesses
+                .iter()
+                .all(|w| w.distance(witness) > tolerance)
+            {
+                report.penetration_witnesses.push(witness);
+            }
+            return state_only;
+        }
+        if refined.distance > options.delta2 || !refined.diagnostics.is_local_minimum {
+            return false;
+        }
+        let tolerance = merge_tolerance(refined, scale);
+        if insert_or_merge(&mut report.contacts, to_world(refined, pose_a), tolerance) {
+            report.stats.merged += 1;
+        }
+        state_only
+    }
+}
+
+/// Appends one mesh query's seeds to `seeds` and its region probes to `probes`, with the
+/// probes' centre-seed indices moved to the seeds' new positions.
+fn take_seeds(out: &MeshOutput, seeds: &mut Vec<Seed>, probes: &mut Vec<RegionProbes>) {
+    let offset = seeds.len();
+    seeds.extend_from_slice(&out.seeds);
+    probes.extend(out.probes.iter().map(|p| RegionProbes {
+        centre_seed: p.centre_seed + offset,
+        ..*p
+    }));
+}
+
+/// A refined centre seed whose contact lies farther than this fraction of its region's radius
+/// from the region's centre, across the contact normal, leaves part of the region unexplained.
+/// One isolated minimum makes the region about an ellipse centred on it, so its centre seed
+/// converges near the centre (the centre, in the loop's plane, stands off a curved surface by
+/// the loop's sagitta, which lies along the normal and is not counted); 1/4 leaves room for a
+/// region made lopsided by a face boundary or the mesh without refining a probe for every
+/// contact.
+const PROBE_DISPLACEMENT: f64 = 0.25;
+
+/// The end seed of `probes`'s region to refine after its centre seed gave `refined` (A's
+/// frame), or `None` when `refined` accounts for the region: B's contact point lies within
+/// [`PROBE_DISPLACEMENT`] x radius of the centre across the contact normal (the loop lies on
+/// B's mesh), or is not finite. The end chosen is the one farther from the refined contact.
+fn far_end<'p>(
+    probes: &'p RegionProbes,
+    refined: &RefinedContact,
+    pose_ab: &DPose3,
+) -> Option<&'p Seed> {
+    let found = refined.point_b;
+    let offset = probes.centre - found;
+    let n = refined.normal;
+    let displacement = (offset - n * n.dot(offset)).length();
+    // Written so that a NaN displacement (a non-finite contact) refines no probe.
+    let off_centre = displacement > PROBE_DISPLACEMENT * probes.radius;
+    if !off_centre {
+        return None;
+    }
+    let [e1, e2] = &probes.ends;
+    let away = |e: &Seed| (*pose_ab * e.b.local_point).distance(found);
+    Some(if away(e1) >= away(e2) { e1 } else { e2 })
 }
 
 /// Why a query could not run.

@@ -17,7 +17,7 @@ pub struct IntersectionSegment {
     pub end: DVec3,
 }
 
-/// Reusable buffers for [`group_regions`] and [`region_centres`].
+/// Reusable buffers for [`group_regions`], [`region_centres`] and [`region_extremes`].
 #[derive(Clone, Debug, Default)]
 pub struct RegionScratch {
     parent: Vec<u32>,
@@ -26,6 +26,7 @@ pub struct RegionScratch {
     sums: Vec<(DVec3, f64, DVec3, u32)>,
     areas: Vec<DVec3>,
     moments: Vec<(DVec3, f64)>,
+    farthest: Vec<f64>,
 }
 
 /// Groups `segments` into connected regions: two segments are connected when they share an end
@@ -141,6 +142,53 @@ pub fn region_centres(
             c0
         };
         centres.push(if centre.is_finite() { centre } else { c0 });
+    }
+}
+
+/// The extent of each of `regions` regions about its centre (`centres[k]`, from
+/// [`region_centres`]): appends to `extremes` the region's radius r_k (mm), the largest
+/// distance from the centre to an end point of its segments, and two end points e1, e2 that
+/// approximate the ends of the loop's diameter: e1 the end point farthest from the centre, e2
+/// the one farthest from e1 (A's frame). A region of one isolated minimum of distance d* and
+/// offset h is about the ellipse |x - p*|ᵀK|x - p*| <= 2 (h - d*) centred on the minimum p*;
+/// where the loop encloses several minima, e1 and e2 lie in the outermost ones' lobes. O(k)
+/// for k segments; a region of one point has r = 0 and e1 = e2 = that point.
+pub fn region_extremes(
+    segments: &[IntersectionSegment],
+    region_of: &[u32],
+    centres: &[DVec3],
+    scratch: &mut RegionScratch,
+    extremes: &mut Vec<(f64, [DVec3; 2])>,
+) {
+    let first = extremes.len();
+    extremes.extend(centres.iter().map(|&c| (0.0, [c, c])));
+    let regions = &mut extremes[first..];
+    for (s, &k) in segments.iter().zip(region_of) {
+        let Some(e) = regions.get_mut(k as usize) else {
+            continue;
+        };
+        let c = centres[k as usize];
+        for p in [s.start, s.end] {
+            let r = p.distance(c);
+            if r > e.0 {
+                *e = (r, [p, p]);
+            }
+        }
+    }
+    let farthest = &mut scratch.farthest;
+    farthest.clear();
+    farthest.resize(regions.len(), 0.0);
+    for (s, &k) in segments.iter().zip(region_of) {
+        let Some(e) = regions.get_mut(k as usize) else {
+            continue;
+        };
+        for p in [s.start, s.end] {
+            let r = p.distance(e.1[0]);
+            if r > farthest[k as usize] {
+                farthest[k as usize] = r;
+                e.1[1] = p;
+            }
+        }
     }
 }
 

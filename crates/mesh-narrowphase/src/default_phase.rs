@@ -1,10 +1,13 @@
 //! [`MeshNarrowphase`]: the default [`MeshPhase`], GJK for convex pairs and proxy-mesh collision
 //! regions for the rest.
 
-use crate::collision_regions::{IntersectionSegment, RegionScratch, group_regions, region_centres};
+use crate::collision_regions::{
+    IntersectionSegment, RegionScratch, group_regions, region_centres, region_extremes,
+};
 use crate::convex_pair::{GjkScratch, HullProximity, WarmStart, hull_proximity};
 use crate::mesh_phase::{
     ComponentRef, ContactBand, MeshInputError, MeshOutput, MeshPhase, MeshStats, MeshVerdict,
+    RegionProbes,
 };
 use crate::plane_filter::clearly_apart;
 use crate::prepared_object::{PreparedComponent, PreparedObject};
@@ -50,6 +53,7 @@ pub struct MeshScratch {
     region_of: Vec<u32>,
     regions: RegionScratch,
     centres: Vec<DVec3>,
+    extremes: Vec<(f64, [DVec3; 2])>,
 }
 
 impl MeshScratch {
@@ -332,7 +336,22 @@ fn triangle_path(
         &mut scratch.regions,
         &mut scratch.centres,
     );
-    push_region_seeds(side_a, side_b, pose_ab, &scratch.centres, &mut out.seeds);
+    scratch.extremes.clear();
+    region_extremes(
+        &scratch.segments,
+        &scratch.region_of,
+        &scratch.centres,
+        &mut scratch.regions,
+        &mut scratch.extremes,
+    );
+    push_contact_region_seeds(
+        side_a,
+        side_b,
+        pose_ab,
+        &scratch.centres,
+        &scratch.extremes,
+        out,
+    );
     if meshes_intersect {
         MeshVerdict::Penetrating
     } else if out.seeds.is_empty() {
@@ -356,6 +375,39 @@ fn push_region_seeds(
         let b = side_b.seed_side.seed_point(inverse * centre, f64::MAX);
         if let (Some(a), Some(b)) = (a, b) {
             seeds.push(Seed { a, b });
+        }
+    }
+}
+
+/// One seed per contact region centre (A's frame), as [`push_region_seeds`], each with its
+/// [`RegionProbes`]: the region's radius and seeds at the two ends of its loop (`extremes`,
+/// from [`region_extremes`]). A region whose centre or ends find no mesh point gets no probes.
+fn push_contact_region_seeds(
+    side_a: &Side<'_>,
+    side_b: &Side<'_>,
+    pose_ab: &DPose3,
+    centres: &[DVec3],
+    extremes: &[(f64, [DVec3; 2])],
+    out: &mut MeshOutput,
+) {
+    let inverse = pose_ab.inverse();
+    let seed = |p: DVec3| {
+        let a = side_a.seed_side.seed_point(p, f64::MAX)?;
+        let b = side_b.seed_side.seed_point(inverse * p, f64::MAX)?;
+        Some(Seed { a, b })
+    };
+    for (&centre, &(radius, ends)) in centres.iter().zip(extremes) {
+        let Some(centre_seed) = seed(centre) else {
+            continue;
+        };
+        out.seeds.push(centre_seed);
+        if let (Some(e1), Some(e2)) = (seed(ends[0]), seed(ends[1])) {
+            out.probes.push(RegionProbes {
+                centre_seed: out.seeds.len() - 1,
+                centre,
+                radius,
+                ends: [e1, e2],
+            });
         }
     }
 }

@@ -36,5 +36,6 @@ pub mod triangle_intersection;
 pub use default_phase::{MeshNarrowphase, MeshNarrowphaseOptions, MeshScratch};
 pub use mesh_phase::{
     ComponentRef, ContactBand, MeshInputError, MeshOutput, MeshPhase, MeshStats, MeshVerdict,
+    RegionProbes,
 };
 pub use prepared_object::PreparedObject;

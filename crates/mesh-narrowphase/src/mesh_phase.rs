@@ -223,8 +223,32 @@ pub struct MeshOutput {
     pub penetrating_pairs: Vec<(u32, u32)>,
     /// Centre of each connected penetration region, in A's frame (witness points).
     pub penetration_centres: Vec<DVec3>,
+    /// For contact regions whose centre seed is in `seeds`: the region's extent and two more
+    /// seeds at the ends of its loop, for the caller to refine when the centre seed does not
+    /// account for the whole region (see [`RegionProbes`]). Empty on the convex path.
+    pub probes: Vec<RegionProbes>,
     /// Counters for statistics: triangle pairs tested, regions found, whether a proxy was built, GJK iterations.
     pub stats: MeshStats,
+}
+
+/// The extent of one contact region (a connected piece of proxy-mesh intersection loop) and
+/// seeds at its far ends. A region holds every pair of mesh points closer than the proxy
+/// offset h there; one isolated minimum of distance (at p*, with d*) makes it about an
+/// ellipse centred on p*, so the region's centre seed converges near the centre. When the
+/// refined contact lies far from the centre (a sizeable fraction of `radius`), the region
+/// holds more than that minimum (two minima in one valley, for instance) and the end seed
+/// farther from the refined contact starts the search for another one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RegionProbes {
+    /// Index in [`MeshOutput::seeds`] of the region's centre seed.
+    pub centre_seed: usize,
+    /// The region's centre p_c (A's frame, mm), the point the centre seed was projected from.
+    pub centre: DVec3,
+    /// Largest distance from `centre` to the region's loop (mm).
+    pub radius: f64,
+    /// Seeds at the two ends of the loop's (approximate) diameter: the loop point farthest from
+    /// the centre, and the loop point farthest from that one.
+    pub ends: [Seed; 2],
 }
 
 impl MeshOutput {
@@ -233,6 +257,7 @@ impl MeshOutput {
         self.seeds.clear();
         self.penetrating_pairs.clear();
         self.penetration_centres.clear();
+        self.probes.clear();
         self.stats = MeshStats::default();
     }
 }
