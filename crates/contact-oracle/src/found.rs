@@ -1,5 +1,6 @@
 //! A polished pair turned into a contact: signed distance, normal, and merging of duplicates.
 
+use crate::kdtree::KdTree;
 use crate::polish::{Eval, Pair};
 use crate::posed::PosedSolid;
 use crate::report::OracleContact;
@@ -59,4 +60,19 @@ pub(crate) fn merge(into: &mut Vec<OracleContact>, c: OracleContact, radius: f64
     } else {
         into.push(c);
     }
+}
+
+/// Whether a polished pair whose sign says penetrating (B's point behind A's face) measures the
+/// distance through material instead: a penetration pair at depth d = |S_a − S_b| has each
+/// point d deep in the other solid with the pair's own point as its nearest boundary point, so
+/// a sample of A strictly closer than d to B's point (or of B to A's point) disproves it. The
+/// case: the inner wall of a cup and a body just outside its outer wall are a local minimum of
+/// the distance between the two boundaries at the wall's thickness, with the body behind the
+/// inner wall's normal, although it is outside the cup (its nearest boundary point is on the
+/// outer wall). Samples lie on the exact surfaces, so a closer sample is a closer surface point;
+/// the 1e-9 relative margin keeps a sample at the pair's own point from counting.
+pub(crate) fn through_material(e: &Eval, tree_a: &KdTree, tree_b: &KdTree) -> bool {
+    let limit = e.r.length() * (1.0 - 1e-9);
+    tree_a.nearest_within(e.pb.point, limit).is_some()
+        || tree_b.nearest_within(e.pa.point, limit).is_some()
 }

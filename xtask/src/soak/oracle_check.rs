@@ -19,9 +19,15 @@
 //!   oracle says separated (nothing within reach) while the pipeline reports a contact whose two
 //!   points, on their exact surfaces (the consistency property checks that), are within delta2
 //!   of each other, the oracle is provably wrong: the surfaces are that close. Likewise when the
-//!   oracle's minimum exceeds |g| for the gap g the pose was built with: the generator moved a
-//!   pair of surface points (a contact's) to exactly g apart along the contact normal, so the
-//!   surfaces are within |g| of each other. The state is then not judged.
+//!   oracle's minimum exceeds g (signed) for the gap g the pose was built with: the generator
+//!   moved B along the normal of a critical pair (a contact's), which keeps the pair critical
+//!   at signed distance exactly g. For g >= 0 the surfaces are then within g of each other.
+//!   For g < 0 the point of the pair on a face of one solid is |g| inside the other along that
+//!   face's normal, and the other's point is its nearest boundary point (a critical point of
+//!   the distance to it, curvature radii >> |g|): that point's signed distance is g, so the
+//!   smallest signed distance over the surface is <= g, and a larger oracle minimum is a
+//!   witness the oracle missed (or one on an edge or apex, which it documents it does not
+//!   report). The state is then not judged.
 //!
 //! The oracle polishes to a stationarity residual of 1e-10 x size (`OracleOptions::for_solids`,
 //! 2e-8 mm for the 200 mm vase), so its distances are good to that; the distance tolerance is
@@ -105,8 +111,8 @@ fn matched(
     (dp <= POINT_TOLERANCE * size + pe).then_some((dd, dp))
 }
 
-/// Compares the pipeline's `report` with the oracle's for the same pose, built with surface
-/// points `aimed_gap` (mm) apart.
+/// Compares the pipeline's `report` with the oracle's for the same pose, built with a critical
+/// pair of surface points at signed distance `aimed_gap` (mm; negative: overlapping).
 #[must_use]
 pub fn compare(
     report: &PairReport,
@@ -132,9 +138,9 @@ pub fn compare(
         .contacts
         .iter()
         .find(|c| c.point_a.distance(c.point_b) <= options.delta2);
-    if oracle.min_distance > aimed_gap.abs() + DISTANCE_TOLERANCE {
+    if oracle.min_distance > aimed_gap + DISTANCE_TOLERANCE {
         out.oracle_limits.push(format!(
-            "oracle minimum {:e}, but the pose was built with surface points {:e} mm apart \
+            "oracle minimum {:e}, but the pose was built with a critical pair at signed distance {:e} mm \
              (pipeline {:?})",
             oracle.min_distance, aimed_gap, report.state
         ));
