@@ -70,9 +70,11 @@ pub(crate) fn merge(into: &mut Vec<OracleContact>, c: OracleContact, radius: f64
 /// the distance between the two boundaries at the wall's thickness, with the body behind the
 /// inner wall's normal, although it is outside the cup (its nearest boundary point is on the
 /// outer wall). Samples lie on the exact surfaces, so a closer sample is a closer surface point;
-/// the 1e-9 relative margin keeps a sample at the pair's own point from counting.
-pub(crate) fn through_material(e: &Eval, tree_a: &KdTree, tree_b: &KdTree) -> bool {
-    let limit = e.r.length() * (1.0 - 1e-9);
-    tree_a.nearest_within(e.pb.point, limit).is_some()
-        || tree_b.nearest_within(e.pa.point, limit).is_some()
+/// a margin of 10 x `tolerance` (mm, the polish's stationarity tolerance) keeps a sample at the
+/// pair's own points from counting, so a touching pair (|r| within it) is never dropped.
+pub(crate) fn through_material(e: &Eval, tree_a: &KdTree, tree_b: &KdTree, tolerance: f64) -> bool {
+    let limit = e.r.length() - 10.0 * tolerance;
+    limit > 0.0
+        && (tree_a.nearest_within(e.pb.point, limit).is_some()
+            || tree_b.nearest_within(e.pa.point, limit).is_some())
 }

@@ -302,7 +302,9 @@ pub(crate) fn minimise(
     // along the common tangent, the residual is tiny long before the points settle, so the
     // polish also waits for the steps to die out (linear convergence, ratio 2/3). A damped
     // step can be short only because the damping is large, so the undamped Newton step must
-    // be short too (`newton_reach`).
+    // be short too (`newton_reach`), except within 10 x tolerance of touching: there H is
+    // singular to rounding along the common tangent, the Newton step is noise, and a touch is
+    // told from a crossing by the normals (`local_minima::polish`).
     let mut last_step = f64::INFINITY;
     loop {
         // Active set: movable parameters at a bound whose descent direction leaves the face.
@@ -355,7 +357,8 @@ pub(crate) fn minimise(
         }
         let res = residual(&e, movable, active);
         let settled = last_step <= 100.0 * limits.tolerance
-            && newton_reach(&e, movable, active).is_none_or(|s| s <= 100.0 * limits.tolerance);
+            && (e.r.length() <= 10.0 * limits.tolerance
+                || newton_reach(&e, movable, active).is_none_or(|s| s <= 100.0 * limits.tolerance));
         if res <= limits.tolerance && settled {
             // Settled next to a pole or apex, where the parametrisation is polar and the steps
             // crawl: if the vertex itself is no farther (to rounding), carry on from there.
