@@ -24,9 +24,9 @@
 //!
 //! Definitions the search enforces: a minimum is accepted only where the undamped Newton step
 //! is short (not merely the damped one: next to a shallow crossing the residual is small while
-//! f drops to zero a Newton step away); a minimum whose sign says penetrating is dropped when
-//! either point has a nearer sample of the other solid than the pair's distance (a distance
-//! measured through a wall); a witness whose Newton polish leaves the descent's depth (an apex
+//! f drops to zero a Newton step away); a minimum is dropped when either point has a nearer
+//! sample of the other solid than the pair's distance (a distance measured through a wall,
+//! past a nearer part of the surface); a witness whose Newton polish leaves the descent's depth (an apex
 //! polished onto the crossing curve) is kept at the descent's own pair.
 //!
 //! Known limits: two minima closer than about 1.5 spacings can merge into one; a penetration

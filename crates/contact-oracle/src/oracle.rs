@@ -149,7 +149,7 @@ fn run(
             Outcome::Minimum(p) => {
                 let na = a.normal(p.pair.fa, p.pair.a[0], p.pair.a[1]);
                 let negative = na.is_some_and(|n| (p.eval.pb.point - p.eval.pa.point).dot(n) < 0.0);
-                if negative && through_material(&p.eval, &ta, &tb, options.tolerance) {
+                if through_material(&p.eval, &ta, &tb, options.tolerance) {
                     continue;
                 }
                 merge(&mut contacts, to_contact(a, &p, negative), merge_radius);
