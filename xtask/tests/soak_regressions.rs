@@ -612,6 +612,7 @@ fn distance_to_face(solid: &geom_param::Solid, face: FaceId, p: DVec3, uv: &mut 
 /// 38.5 deg (pencil-goblet) and 71 deg (pencil-pencil) with the pencil's axis, while the cone's
 /// normals make 74 deg with it (half-angle 16 deg, from the oracle's points). The pipeline
 /// reports the apex penetration alone, as it should; this keeps it from reporting the crossing.
+/// (The oracle now reports the apex witness too, docs/ROBUSTNESS.md oracle fix 14.)
 #[test]
 fn a_pencil_apex_inside_a_surface_is_one_contact_not_a_crossing() {
     let (pipeline, objects) = setup();

@@ -257,6 +257,54 @@ pub fn sphere_in_bowl(
     }
 }
 
+/// A ball (A, radius `r`, spun by `spin`) beside the outer wall of a cylindrical cup (B: inner
+/// radius `inner`, wall thickness `wall`, 8 r tall with a floor r thick, axis z, standing on
+/// z = 0). The ball's centre lies at height 4 r and radius inner + wall + r + gap in the
+/// direction `azimuth` (rad) from the x axis. One contact, on the radial line: distance `gap`
+/// to the outer wall. The inner wall is a local minimum of the distance between the two
+/// boundaries too (wall + gap, measured through the wall, with the ball behind the inner
+/// wall's normal), but no contact: the ball is outside the cup. Requires r > 1 mm, so the rim
+/// and floor stay beyond a 1 mm reach.
+#[must_use]
+pub fn ball_beside_cup(
+    r: f64,
+    inner: f64,
+    wall: f64,
+    gap: f64,
+    azimuth: f64,
+    spin: DQuat,
+) -> ClosedFormScene {
+    let outer = inner + wall;
+    let (height, floor) = (8.0 * r, r);
+    let line = |from: [f64; 2], to: [f64; 2]| SegmentSpec::Line { from, to };
+    let cup = object(
+        "cup",
+        vec![
+            line([0.0, 0.0], [outer, 0.0]),
+            line([outer, 0.0], [outer, height]),
+            line([outer, height], [inner, height]),
+            line([inner, height], [inner, floor]),
+            line([inner, floor], [0.0, floor]),
+        ],
+    );
+    let d = DVec3::new(azimuth.cos(), azimuth.sin(), 0.0);
+    let centre = d * (outer + r + gap) + DVec3::Z * (0.5 * height);
+    let point_a = centre - d * r;
+    ClosedFormScene {
+        name: format!("ball_beside_cup(r {r}, inner {inner}, wall {wall}, gap {gap})"),
+        a: sphere(r),
+        pose_a: pose(spin, centre),
+        b: cup,
+        pose_b: DPose3::IDENTITY,
+        expected: vec![ExpectedContact {
+            point_a,
+            point_b: point_a - d * gap,
+            distance: gap,
+            normal: -d,
+        }],
+    }
+}
+
 /// Capped cylinders of length `length` with perpendicular axes: A (radius `r1`) along x through
 /// the origin, B (radius `r2`) along y at height r1 + r2 + gap. One contact on the common
 /// perpendicular (the z axis), provided length / 2 > r1 + r2 + 1.

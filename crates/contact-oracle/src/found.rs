@@ -1,5 +1,6 @@
 //! A polished pair turned into a contact: signed distance, normal, and merging of duplicates.
 
+use crate::kdtree::KdTree;
 use crate::polish::{Eval, Pair};
 use crate::posed::PosedSolid;
 use crate::report::OracleContact;
@@ -59,4 +60,23 @@ pub(crate) fn merge(into: &mut Vec<OracleContact>, c: OracleContact, radius: f64
     } else {
         into.push(c);
     }
+}
+
+/// Whether a polished minimum measures the distance past a nearer part of either surface
+/// (through material) rather than between two surface points that are each other's nearest:
+/// a contact or penetration pair at distance d = |S_a − S_b| has B's nearest boundary point to
+/// S_a at S_b and A's nearest to S_b at S_a, so a sample of A strictly closer than d to B's
+/// point (or of B to A's point) disproves it. The cases: the inner wall of a cup and a body
+/// just outside its outer wall are a local minimum of the distance between the two boundaries
+/// at the wall's thickness plus the gap, signed negative when the cup is A (the body is behind
+/// the inner wall's normal, although it is outside the cup) and positive when the body is A;
+/// either way the outer wall is nearer. Samples lie on the exact surfaces, so a closer sample
+/// is a closer surface point; a margin of 10 x `tolerance` (mm, the polish's stationarity
+/// tolerance) keeps a sample at the pair's own points from counting, so a touching pair (|r|
+/// within it) is never dropped.
+pub(crate) fn through_material(e: &Eval, tree_a: &KdTree, tree_b: &KdTree, tolerance: f64) -> bool {
+    let limit = e.r.length() - 10.0 * tolerance;
+    limit > 0.0
+        && (tree_a.nearest_within(e.pb.point, limit).is_some()
+            || tree_b.nearest_within(e.pa.point, limit).is_some())
 }

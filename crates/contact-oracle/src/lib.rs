@@ -22,9 +22,17 @@
 //!
 //! Frames: everything reported is in the world frame, lengths in mm.
 //!
+//! Definitions the search enforces: a minimum is accepted only where the undamped Newton step
+//! is short (not merely the damped one: next to a shallow crossing the residual is small while
+//! f drops to zero a Newton step away); a minimum is dropped when either point has a nearer
+//! sample of the other solid than the pair's distance (a distance measured through a wall,
+//! past a nearer part of the surface); a witness whose Newton polish leaves the descent's depth (an apex
+//! polished onto the crossing curve) is kept at the descent's own pair.
+//!
 //! Known limits: two minima closer than about 1.5 spacings can merge into one; a penetration
-//! witness on an edge or apex of A (or B, from B's side) is not reported; a non-isolated
-//! minimum (a circle or segment of equal distance) yields an arbitrary set of points on it.
+//! witness on an edge of A (or B, from B's side) is not reported (an apex is: it is a pole of
+//! its face); a non-isolated minimum (a circle or segment of equal distance) yields an
+//! arbitrary set of points on it.
 
 // Index loops mirror the matrix notation of the small dense systems (H_ij, g_k).
 #![allow(clippy::needless_range_loop)]

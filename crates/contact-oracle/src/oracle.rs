@@ -3,7 +3,7 @@
 
 use crate::cross_check::compare;
 use crate::error::OracleError;
-use crate::found::{contact, merge};
+use crate::found::{contact, merge, through_material};
 use crate::kdtree::KdTree;
 use crate::local_minima::{self, NEIGHBOURHOOD, Outcome};
 use crate::options::OracleOptions;
@@ -149,6 +149,9 @@ fn run(
             Outcome::Minimum(p) => {
                 let na = a.normal(p.pair.fa, p.pair.a[0], p.pair.a[1]);
                 let negative = na.is_some_and(|n| (p.eval.pb.point - p.eval.pa.point).dot(n) < 0.0);
+                if through_material(&p.eval, &ta, &tb, options.tolerance) {
+                    continue;
+                }
                 merge(&mut contacts, to_contact(a, &p, negative), merge_radius);
             }
             Outcome::Crossing(q) => crossings.push(q),

@@ -294,8 +294,14 @@ fn pole_is_stationary(a: &PosedSolid, x: &Phi) -> bool {
 }
 
 /// A penetration witness from `start`: the descent must end at an interior local minimum of φ
-/// with φ < 0; the pair is then polished by plain Newton on ∇f = 0 (kept when it converges
-/// nearby, else the descent's own pair is returned with its residual).
+/// with φ < 0; the pair is then polished by plain Newton on ∇f = 0, kept when it converges
+/// nearby and at the descent's depth (| |r| − |φ| | <= 10 x tolerance), else the descent's own
+/// pair is returned with its residual.
+///
+/// The depth condition matters where φ's minimum is not a smooth stationary pair, e.g. at an
+/// apex of A inside B: ∇f also vanishes wherever f = 0, on the curve where the surfaces cross,
+/// and Newton from the apex can land there (|r| ~ 0, normals not opposite). Such a point is a
+/// crossing, not a witness of the depth the descent found.
 pub(crate) fn witness(
     a: &PosedSolid,
     b: &PosedSolid,
@@ -309,7 +315,8 @@ pub(crate) fn witness(
     }
     let polished = polish::stationary(a, b, d.pair, limits);
     let near = a.eval(d.pair.fa, d.pair.a[0], d.pair.a[1]).point;
-    if polished.converged && polished.eval.pa.point.distance(near) <= spacing {
+    let same_depth = (polished.eval.r.length() - d.value.abs()).abs() <= 10.0 * limits.tolerance;
+    if polished.converged && same_depth && polished.eval.pa.point.distance(near) <= spacing {
         return Some(polished);
     }
     Some(settled(a, b, d.pair, polished.iterations, limits))

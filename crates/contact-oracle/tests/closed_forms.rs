@@ -4,7 +4,8 @@
 mod support;
 
 use contact_oracle::closed_form::{
-    crossed_cylinders, rod_across_torus, sphere_in_bowl, sphere_on_sphere, torus_on_plane,
+    ball_beside_cup, crossed_cylinders, rod_across_torus, sphere_in_bowl, sphere_on_sphere,
+    torus_on_plane,
 };
 use contact_oracle::{ClosedFormScene, OracleState};
 use geom_param::{DPose3, DQuat, DVec3};
@@ -87,6 +88,22 @@ fn sphere_in_bowl_at_the_bottom_pole() {
     }
 }
 
+/// The distance through the cup's wall (a local minimum between the boundaries, behind the
+/// inner wall's normal) is no penetration: the only contact is the one at the outer wall. The
+/// wall (0.8 mm) is thinner than the sampled reach (1 mm + 3 spacings), so the inner wall is
+/// sampled and the through-wall pair is a candidate.
+#[test]
+fn ball_beside_a_cup_wall_matches_closed_form() {
+    run(
+        "ball_beside_cup",
+        |gap, rng| {
+            let azimuth = rng.range(0.0, std::f64::consts::TAU);
+            ball_beside_cup(5.0, 20.0, 0.8, gap, azimuth, rng.rotation())
+        },
+        2,
+    );
+}
+
 #[test]
 fn crossed_cylinders_match_closed_form() {
     run(
@@ -125,6 +142,7 @@ fn builders_make_valid_profiles() {
         crossed_cylinders(3.0, 5.0, 0.1, 30.0),
         torus_on_plane(8.0, 2.5, 0.5, 0.1),
         rod_across_torus(8.0, 2.5, 1.5, 0.1),
+        ball_beside_cup(5.0, 20.0, 2.0, 0.1, 1.0, q),
     ] {
         let mesh = geom_param::MeshOptions {
             chordal_tolerance: 0.5,
