@@ -58,7 +58,7 @@ pub(crate) fn overlap_near(
         // The other normal, negated, in the own tangent plane: length sin α.
         let tilt = -n_other + n_own * n_other.dot(n_own);
         let sine = tilt.length();
-        if own_eval.n != 2 || !(sine > TOUCH_ANGLE) {
+        if own_eval.n != 2 || sine.is_nan() || sine <= TOUCH_ANGLE {
             continue;
         }
         let lens = sine / curvature;
