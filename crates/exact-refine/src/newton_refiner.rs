@@ -103,7 +103,10 @@ impl Refiner for NewtonRefiner {
 /// diagnostics; but a pair judged a local minimum whose gap is within its own error estimate
 /// is a touch only if the surfaces do not cross next to it ([`overlap_near`]). Where they do,
 /// the answer is the penetration witness solved from the overlapping probe when that
-/// converges deeper, and otherwise the same pair marked as no local minimum.
+/// converges deeper to a witness that passes the second-order test, and otherwise the pair
+/// itself. (A lens so shallow that its witness does not converge is within the distance's
+/// error of d = 0 anyway: `soak 10000 --seed 14` had 35 touches built at |g| < 1e-9 mm lost
+/// when such pairs were dropped instead.)
 fn check_touch(
     a: &Body,
     b: &Body,
@@ -112,7 +115,7 @@ fn check_touch(
     options: &NewtonOptions,
 ) -> (Solution, f64, DVec3, RefineDiagnostics) {
     let (distance, normal) = signed_distance(a, b, &solution.state);
-    let mut diagnostics = diagnose(a, b, &solution, normal);
+    let diagnostics = diagnose(a, b, &solution, normal);
     let state = &solution.state;
     if !diagnostics.is_local_minimum || state.d.length() > diagnostics.error_estimate {
         return (solution, distance, normal, diagnostics);
@@ -132,9 +135,10 @@ fn check_touch(
         let iterations = solution.iterations + deep.iterations;
         let deep = Solution { iterations, ..deep };
         let deep_diagnostics = diagnose(a, b, &deep, deep_normal);
-        return (deep, deep_distance, deep_normal, deep_diagnostics);
+        if deep_diagnostics.is_local_minimum {
+            return (deep, deep_distance, deep_normal, deep_diagnostics);
+        }
     }
-    diagnostics.is_local_minimum = false;
     (solution, distance, normal, diagnostics)
 }
 
