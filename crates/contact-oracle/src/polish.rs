@@ -413,30 +413,13 @@ pub(crate) fn minimise(
         // Damped Newton step on the free parameters.
         let free: Vec<usize> = (0..N).filter(|&k| movable[k] && !active[k]).collect();
         let n = free.len();
-        let floor = 1e-12
-            * e.cols
-                .iter()
-                .map(|c| c.length_squared())
-                .fold(0.0, f64::max);
-        let mut m = [[0.0; N]; N];
-        let mut rhs = [0.0; N];
-        for (i, &ki) in free.iter().enumerate() {
-            for (j, &kj) in free.iter().enumerate() {
-                m[i][j] = e.h[ki][kj];
-            }
-            m[i][i] += mu * e.cols[ki].length_squared().max(floor);
-            rhs[i] = -e.g[ki];
-        }
+        let (m, rhs) = reduced_system(&e, &free, |speed2, floor| mu * speed2.max(floor));
         iterations += 1;
         let Some(delta) = linalg::solve(&m, &rhs, n) else {
             mu *= 10.0;
             continue;
         };
-        let reach = free
-            .iter()
-            .enumerate()
-            .map(|(i, &k)| (e.cols[k] * delta[i]).length())
-            .fold(0.0, f64::max);
+        let reach = point_reach(&e, &free, &delta);
         let scale = if reach > limits.step {
             limits.step / reach
         } else {
@@ -483,7 +466,19 @@ fn newton_reach(e: &Eval, movable: [bool; N], active: [bool; N]) -> Option<f64> 
     if n == 0 {
         return Some(0.0);
     }
-    // The same floor as the polishers where a direction vanishes (a pole's u).
+    let (m, rhs) = reduced_system(e, &free, pole_damping);
+    let delta = linalg::solve(&m, &rhs, n)?;
+    Some(point_reach(e, &free, &delta))
+}
+
+/// The Newton system H δ = −g restricted to the `free` parameters (row i is parameter
+/// `free[i]`), with `damping(|c_k|², floor)` added to each diagonal entry, where c_k is the
+/// parameter's column (∂P/∂x_k, mm per unit) and floor = 1e-12 x the largest |c|².
+fn reduced_system(
+    e: &Eval,
+    free: &[usize],
+    damping: impl Fn(f64, f64) -> f64,
+) -> ([[f64; N]; N], [f64; N]) {
     let floor = 1e-12
         * e.cols
             .iter()
@@ -495,18 +490,23 @@ fn newton_reach(e: &Eval, movable: [bool; N], active: [bool; N]) -> Option<f64> 
         for (j, &kj) in free.iter().enumerate() {
             m[i][j] = e.h[ki][kj];
         }
-        if e.cols[ki].length_squared() <= floor {
-            m[i][i] += floor;
-        }
+        m[i][i] += damping(e.cols[ki].length_squared(), floor);
         rhs[i] = -e.g[ki];
     }
-    let delta = linalg::solve(&m, &rhs, n)?;
-    Some(
-        free.iter()
-            .enumerate()
-            .map(|(i, &k)| (e.cols[k] * delta[i]).length())
-            .fold(0.0, f64::max),
-    )
+    (m, rhs)
+}
+
+/// Damping only where a direction vanishes (a pole's u): the floor there, nothing elsewhere.
+fn pole_damping(speed2: f64, floor: f64) -> f64 {
+    if speed2 <= floor { floor } else { 0.0 }
+}
+
+/// The largest move of either point (mm) for the parameter step `delta` over `free`.
+fn point_reach(e: &Eval, free: &[usize], delta: &[f64; N]) -> f64 {
+    free.iter()
+        .enumerate()
+        .map(|(i, &k)| (e.cols[k] * delta[i]).length())
+        .fold(0.0, f64::max)
 }
 
 /// Plain Newton on ∇f = 0 over all four parameters (no bounds are active: a witness is an
@@ -539,18 +539,9 @@ pub(crate) fn stationary(a: &PosedSolid, b: &PosedSolid, start: Pair, limits: &L
             };
         }
         // Tiny Levenberg damping only where the plain system is singular (a pole's u).
-        let floor = 1e-12
-            * e.cols
-                .iter()
-                .map(|c| c.length_squared())
-                .fold(0.0, f64::max);
-        let mut m = e.h;
-        for (k, row) in m.iter_mut().enumerate() {
-            if e.cols[k].length_squared() <= floor {
-                row[k] += floor;
-            }
-        }
-        let Some(delta) = linalg::solve(&m, &e.g.map(|g| -g), N) else {
+        let every: [usize; N] = std::array::from_fn(|k| k);
+        let (m, rhs) = reduced_system(&e, &every, pole_damping);
+        let Some(delta) = linalg::solve(&m, &rhs, N) else {
             return Polished {
                 pair: p,
                 eval: e,
@@ -560,9 +551,7 @@ pub(crate) fn stationary(a: &PosedSolid, b: &PosedSolid, start: Pair, limits: &L
                 converged: false,
             };
         };
-        let reach = (0..N)
-            .map(|k| (e.cols[k] * delta[k]).length())
-            .fold(0.0, f64::max);
+        let reach = point_reach(&e, &every, &delta);
         let mut scale = if reach > limits.step {
             limits.step / reach
         } else {
