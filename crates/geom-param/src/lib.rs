@@ -18,43 +18,36 @@
 //! - `json` (off by default): [`ObjectDescription::from_json`] and
 //!   [`ObjectDescription::to_json`] via serde_json.
 
-mod circle_edge;
-mod component_mesh;
-mod components;
-mod convex_hull;
-mod convexity;
-mod curve;
-mod feature;
-mod object_description;
+mod curves;
+mod io;
 mod object_model;
-mod profile;
-mod profile_error;
-mod profile_segment;
-mod revolve;
-mod revolved_surface;
+mod revolution;
 mod seed;
-mod solid;
-mod surface;
+mod surfaces;
 mod tessellation;
+mod topology;
 
-pub use circle_edge::CircleEdge;
-pub use component_mesh::ComponentMesh;
-pub use components::{ComponentKind, SurfaceComponent};
-pub use convex_hull::ConvexHull;
-pub use convexity::{classify_joint, classify_revolved_face};
-pub use curve::{Curve, CurvePoint, ParamRange};
-pub use feature::{ComponentId, EdgeId, FaceId, FeatureId, FeatureLocation, VertexId};
-pub use object_description::{LoadError, ObjectDescription};
+pub use curves::circle_edge::CircleEdge;
+pub use curves::curve::{Curve, CurvePoint, ParamRange};
+pub use curves::curve2::{Curve2, Curve2Point, Line2};
+pub use io::object_description::{LoadError, ObjectDescription};
 pub use object_model::{MIN_RELATIVE_TOLERANCE, MeshOptions, ModelError, ObjectModel};
-pub use profile::{Closure, Profile, SegmentSpec};
-pub use profile_error::ProfileError;
-pub use profile_segment::{ArcSegment, CubicBezier, LineSegment, ProfilePoint, ProfileSegment};
-pub use revolved_surface::RevolvedSurface;
+pub use revolution::profile::{Closure, Profile, SegmentSpec};
+pub use revolution::profile_error::ProfileError;
+pub use revolution::profile_segment::{
+    ArcSegment, CubicBezier, LineSegment, ProfilePoint, ProfileSegment,
+};
 pub use seed::{Seed, SeedPoint};
-pub use solid::{
+pub use surfaces::revolved_surface::RevolvedSurface;
+pub use surfaces::surface::{PrincipalCurvatures, Surface, SurfacePoint};
+pub use tessellation::component_mesh::ComponentMesh;
+pub use tessellation::convex_hull::ConvexHull;
+pub use topology::components::{ComponentKind, SurfaceComponent};
+pub use topology::convexity::{classify_joint, classify_revolved_face};
+pub use topology::feature::{ComponentId, EdgeId, FaceId, FeatureId, FeatureLocation, VertexId};
+pub use topology::solid::{
     Boundary, Edge, EdgeConvexity, EdgeUse, Face, FaceConvexity, ParamSide, Solid, Vertex,
 };
-pub use surface::{PrincipalCurvatures, Surface, SurfacePoint};
 
 pub use glam::{DQuat, DVec2, DVec3};
 /// A rigid motion (rotation + translation) in f64: parry's (glamx's) `DPose3`.

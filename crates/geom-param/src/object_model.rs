@@ -2,14 +2,14 @@
 //!
 //! Everything here is preprocessing, done once per object and shared by all queries.
 
-use crate::component_mesh::ComponentMesh;
-use crate::components::{ComponentKind, SurfaceComponent, partition};
-use crate::convex_hull::ConvexHull;
-use crate::feature::{ComponentId, FaceId};
-use crate::profile::Profile;
-use crate::revolve::revolve;
-use crate::solid::Solid;
-use crate::tessellation::tessellate;
+use crate::revolution::profile::Profile;
+use crate::revolution::revolve::revolve;
+use crate::tessellation::component_mesh::ComponentMesh;
+use crate::tessellation::convex_hull::ConvexHull;
+use crate::tessellation::revolved_mesher::tessellate;
+use crate::topology::components::{ComponentKind, SurfaceComponent, partition};
+use crate::topology::feature::{ComponentId, FaceId};
+use crate::topology::solid::Solid;
 
 /// Smallest chordal tolerance relative to the object's size (largest coordinate). A 100 mm
 /// object can be meshed to 2 µm; finer meshes (hundreds of thousands of vertices) make the

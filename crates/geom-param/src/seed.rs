@@ -1,6 +1,6 @@
 //! Seeds: the hand-over from the mesh phase (Stage 2) to exact refinement (Stage 3).
 
-use crate::feature::{ComponentId, FeatureLocation};
+use crate::topology::feature::{ComponentId, FeatureLocation};
 use glam::DVec3;
 
 /// One side of a seed: an approximate closest point and the exact feature it corresponds to.

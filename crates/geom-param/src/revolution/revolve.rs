@@ -5,12 +5,12 @@
 //! segments i and i + 1; for a ring, edge n - 1 joins the last segment to the first). An axis
 //! profile has vertex 0 where it starts on the axis and vertex 1 where it ends.
 
-use crate::circle_edge::CircleEdge;
-use crate::convexity::{classify_joint, classify_revolved_face};
-use crate::feature::{EdgeId, FaceId, VertexId};
-use crate::profile::{Closure, Profile};
-use crate::revolved_surface::RevolvedSurface;
-use crate::solid::{Boundary, Edge, EdgeUse, Face, ParamSide, Solid, Vertex};
+use crate::curves::circle_edge::CircleEdge;
+use crate::revolution::profile::{Closure, Profile};
+use crate::surfaces::revolved_surface::RevolvedSurface;
+use crate::topology::convexity::{classify_joint, classify_revolved_face};
+use crate::topology::feature::{EdgeId, FaceId, VertexId};
+use crate::topology::solid::{Boundary, Edge, EdgeUse, Face, ParamSide, Solid, Vertex};
 use glam::DVec3;
 
 /// The solid swept by `profile` turning about the z axis.

@@ -1,9 +1,9 @@
 //! The boundary representation of a solid: faces, edges and vertices with adjacency and outward
 //! orientation, whatever surface and curve types they carry.
 
-use crate::curve::{Curve, CurvePoint};
-use crate::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
-use crate::surface::{Surface, SurfacePoint};
+use crate::curves::curve::{Curve, CurvePoint};
+use crate::surfaces::surface::{Surface, SurfacePoint};
+use crate::topology::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
 use glam::DVec3;
 
 /// One side of a face's parameter rectangle.

@@ -7,7 +7,7 @@
 //! II = [[L, M], [M, N]] (L = S_uu · n, ...), the principal curvatures are the eigenvalues of
 //! -I⁻¹ II.
 
-use crate::curve::ParamRange;
+use crate::curves::curve::ParamRange;
 use glam::DVec3;
 
 /// Position and partial derivatives of a surface at one (u, v), in the object frame (mm).

@@ -1,6 +1,6 @@
 //! A circle about the z axis: the edge where two revolved faces meet.
 
-use crate::curve::{Curve, CurvePoint, ParamRange};
+use crate::curves::curve::{Curve, CurvePoint, ParamRange};
 use glam::DVec3;
 use std::f64::consts::TAU;
 

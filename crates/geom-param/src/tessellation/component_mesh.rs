@@ -1,6 +1,6 @@
 //! The mesh half of a component's dual representation.
 
-use crate::feature::{FaceId, FeatureLocation};
+use crate::topology::feature::{FaceId, FeatureLocation};
 use glam::DVec3;
 
 /// A triangle mesh of one surface component whose every vertex lies on the exact surface and

@@ -1,7 +1,7 @@
 //! A validated profile: the closed (r, z) outline that is revolved into a solid.
 
-use crate::profile_error::ProfileError;
-use crate::profile_segment::{ArcSegment, CubicBezier, LineSegment, ProfileSegment};
+use crate::revolution::profile_error::ProfileError;
+use crate::revolution::profile_segment::{ArcSegment, CubicBezier, LineSegment, ProfileSegment};
 use glam::DVec2;
 
 /// One segment as written in an object file: endpoints explicit, arcs by centre and endpoints.

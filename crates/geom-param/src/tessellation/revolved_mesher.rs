@@ -17,13 +17,13 @@
 //! initial rings follow the curvature (arc pieces from the sagitta formula, ring counts from
 //! r (1 - cos(π / n)) <= budget / 2), so most strips pass at once.
 
-use crate::component_mesh::ComponentMesh;
-use crate::components::SurfaceComponent;
-use crate::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
-use crate::profile::{Closure, Profile};
-use crate::profile_segment::ProfileSegment;
-use crate::revolved_surface::RevolvedSurface;
-use crate::surface::Surface;
+use crate::revolution::profile::{Closure, Profile};
+use crate::revolution::profile_segment::ProfileSegment;
+use crate::surfaces::revolved_surface::RevolvedSurface;
+use crate::surfaces::surface::Surface;
+use crate::tessellation::component_mesh::ComponentMesh;
+use crate::topology::components::SurfaceComponent;
+use crate::topology::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
 use glam::{DVec2, DVec3};
 use std::collections::HashMap;
 use std::f64::consts::{PI, TAU};

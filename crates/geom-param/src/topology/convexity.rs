@@ -5,8 +5,8 @@
 //! segment at the points where either can change sign ([`ProfileSegment::sign_breakpoints`]) and
 //! between them, so a thin concave band is never missed.
 
-use crate::profile_segment::ProfileSegment;
-use crate::solid::{EdgeConvexity, FaceConvexity};
+use crate::revolution::profile_segment::ProfileSegment;
+use crate::topology::solid::{EdgeConvexity, FaceConvexity};
 
 /// Relative tolerance below which a curvature or slope counts as zero.
 const SIGN_EPS: f64 = 1e-9;

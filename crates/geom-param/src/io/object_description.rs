@@ -13,8 +13,8 @@
 //! ```
 
 use crate::object_model::{MeshOptions, ModelError, ObjectModel};
-use crate::profile::{Profile, SegmentSpec};
-use crate::profile_error::ProfileError;
+use crate::revolution::profile::{Profile, SegmentSpec};
+use crate::revolution::profile_error::ProfileError;
 
 /// A named profile, not yet validated.
 #[derive(Clone, Debug, PartialEq)]
@@ -90,7 +90,7 @@ impl ObjectDescription {
 #[cfg(feature = "json")]
 mod json {
     use super::{LoadError, ObjectDescription};
-    use crate::profile::SegmentSpec;
+    use crate::revolution::profile::SegmentSpec;
     use serde_json::{Map, Value, json};
 
     impl ObjectDescription {

@@ -8,8 +8,8 @@
 //! component, and no two components of the same kind could be merged under these rules, which
 //! makes the count minimal.
 
-use crate::feature::{ComponentId, EdgeId, FaceId, VertexId};
-use crate::solid::{Boundary, EdgeConvexity, FaceConvexity, Solid};
+use crate::topology::feature::{ComponentId, EdgeId, FaceId, VertexId};
+use crate::topology::solid::{Boundary, EdgeConvexity, FaceConvexity, Solid};
 
 /// Convex or concave.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -45,7 +45,8 @@ pub fn partition(solid: &Solid) -> Vec<SurfaceComponent> {
         .iter()
         .map(|f| f.convexity == FaceConvexity::Concave)
         .collect();
-    let faces_of = |e: &crate::solid::Edge| (e.uses[0].face.0 as usize, e.uses[1].face.0 as usize);
+    let faces_of =
+        |e: &crate::topology::solid::Edge| (e.uses[0].face.0 as usize, e.uses[1].face.0 as usize);
 
     // Concave faces join across any edge.
     for edge in &solid.edges {

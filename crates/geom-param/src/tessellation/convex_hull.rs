@@ -1,7 +1,7 @@
 //! The convex hull of a convex component's mesh, with vertex adjacency for hill-climbing
 //! support maps.
 
-use crate::component_mesh::ComponentMesh;
+use crate::tessellation::component_mesh::ComponentMesh;
 use glam::DVec3;
 use std::collections::HashMap;
 

@@ -4,9 +4,9 @@
 //! v in [0, 1] the segment parameter. With the profile walked counter-clockwise around the
 //! material, ∂S/∂u × ∂S/∂v = r (z' cos u, z' sin u, -r') points outwards wherever r > 0.
 
-use crate::curve::ParamRange;
-use crate::profile_segment::ProfileSegment;
-use crate::surface::{PrincipalCurvatures, Surface, SurfacePoint};
+use crate::curves::curve::ParamRange;
+use crate::revolution::profile_segment::ProfileSegment;
+use crate::surfaces::surface::{PrincipalCurvatures, Surface, SurfacePoint};
 use glam::DVec3;
 use std::f64::consts::TAU;
 

@@ -1,0 +1,3 @@
+//! Object file formats.
+
+pub(crate) mod object_description;

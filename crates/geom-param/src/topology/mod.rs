@@ -1,0 +1,6 @@
+//! Boundary representation: faces, edges, vertices, their convexity and the surface components.
+
+pub(crate) mod components;
+pub(crate) mod convexity;
+pub(crate) mod feature;
+pub(crate) mod solid;
