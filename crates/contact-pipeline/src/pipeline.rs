@@ -258,7 +258,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         // Stage 3.
         let start = Instant::now();
         report.stats.refine_ran = true;
-        let scale = a.model.profile.scale().max(b.model.profile.scale());
+        let scale = a.model.scale.max(b.model.scale);
         for (i, seed) in scratch.seeds.iter().enumerate() {
             let refined = self.refiner.refine(
                 &a.model.solid,

@@ -28,6 +28,14 @@ pub(crate) struct Frame {
 }
 
 impl Frame {
+    /// The identity: A's frame is the solid's own.
+    pub(crate) fn identity() -> Self {
+        Self {
+            rotation: DMat3::IDENTITY,
+            translation: DVec3::ZERO,
+        }
+    }
+
     pub(crate) fn new(pose: &DPose3) -> Self {
         Self {
             rotation: DMat3::from_quat(pose.rotation),
@@ -214,9 +222,10 @@ impl Body<'_> {
                     .uses
                     .iter()
                     .filter_map(|use_| {
+                        let [a, b] = solid.use_params(use_, t);
                         let surface = &solid.face(use_.face).surface;
-                        let [a, b] = side_params(&surface.domain(), use_.side, t);
-                        surface.normal(a, b)
+                        let [ra, rb] = surface.domain();
+                        surface.normal(wrap(&ra, a), wrap(&rb, b))
                     })
                     .sum();
                 sum.try_normalize()
@@ -235,6 +244,10 @@ impl Body<'_> {
                         })
                     })
                 };
+                // Where edges end (a corner): the mean of their faces' normals there.
+                if let Some(corner) = corner_normal(solid, id) {
+                    return Some(frame.vector(corner));
+                }
                 // A pole has a normal; only an apex needs the (more costly) inward tangents.
                 samples()
                     .find_map(|(surface, _, [a, b])| surface.normal(a, b))
@@ -278,4 +291,29 @@ pub(crate) fn vertex_sides(
         .filter(move |&side| solid.face(face_id).boundary(side) == Boundary::Vertex(id))
         .map(move |side| (face_id, side))
     })
+}
+
+/// The mean of the normals of the faces around a vertex where edges end, taken at the edges'
+/// ends; `None` where no edge ends at the vertex or the normals cancel.
+fn corner_normal(solid: &Solid, id: geom_param::VertexId) -> Option<DVec3> {
+    let mut sum = DVec3::ZERO;
+    for &e in &solid.vertex(id).edges {
+        let edge = solid.edge(e);
+        let Some(ends) = edge.ends else { continue };
+        let range = edge.curve.domain();
+        for (end, t) in [(ends[0], range.min), (ends[1], range.max)] {
+            if end != id {
+                continue;
+            }
+            for use_ in &edge.uses {
+                let [a, b] = solid.use_params(use_, t);
+                let surface = &solid.face(use_.face).surface;
+                let [ra, rb] = surface.domain();
+                if let Some(n) = surface.normal(wrap(&ra, a), wrap(&rb, b)) {
+                    sum += n;
+                }
+            }
+        }
+    }
+    sum.try_normalize()
 }

@@ -3,7 +3,7 @@
 //! adjacent face when the objective decreases into it.
 
 use crate::feature_eval::{Body, Loc, inward_tangent, side_of, side_params, vertex_sides, wrap};
-use geom_param::{Boundary, DVec3, FeatureLocation, ParamSide, SurfacePoint};
+use geom_param::{Boundary, DVec2, DVec3, EdgeUse, FeatureLocation, SurfacePoint};
 
 /// Samples of the running parameter tried when leaving a vertex into a face: the best one is
 /// only a start, Newton then turns the running parameter to the optimum.
@@ -21,6 +21,9 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
             let face = solid.face(id);
             let domain = face.surface.domain();
             let w = [wrap(&domain[0], u), wrap(&domain[1], v)];
+            if let Some(trim) = &face.trim {
+                return Some(settle_trimmed(solid, id, trim, [u, v]));
+            }
             for i in 0..2 {
                 let range = domain[i];
                 if range.periodic || (w[i] > range.min && w[i] < range.max) {
@@ -34,7 +37,7 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
                     Boundary::Vertex(vertex) => {
                         return Some(FeatureLocation::Vertex { id: vertex });
                     }
-                    Boundary::Periodic => {}
+                    Boundary::Periodic | Boundary::Trimmed => {}
                 }
             }
             Some(FeatureLocation::Face {
@@ -43,12 +46,61 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
                 v: w[1],
             })
         }
-        Some(FeatureLocation::Edge { id, t }) => Some(FeatureLocation::Edge {
-            id,
-            t: wrap(&solid.edge(id).curve.domain(), t),
-        }),
+        Some(FeatureLocation::Edge { id, t }) => {
+            let edge = solid.edge(id);
+            let range = edge.curve.domain();
+            match edge.ends {
+                Some([start, _]) if !range.periodic && t <= range.min => {
+                    Some(FeatureLocation::Vertex { id: start })
+                }
+                Some([_, end]) if !range.periodic && t >= range.max => {
+                    Some(FeatureLocation::Vertex { id: end })
+                }
+                _ => Some(FeatureLocation::Edge {
+                    id,
+                    t: wrap(&range, t),
+                }),
+            }
+        }
         other => other,
     }
+}
+
+/// [`settle`] on a trimmed face: the face location where (u, v) lies in the trimmed region
+/// (within rounding of the model tolerance), otherwise the nearest point of the trim's
+/// boundary, on the edge it belongs to (or, at the edge's end, its vertex).
+fn settle_trimmed(
+    solid: &geom_param::Solid,
+    id: geom_param::FaceId,
+    trim: &geom_param::Trim,
+    uv: [f64; 2],
+) -> FeatureLocation {
+    let p = trim.unwrap(DVec2::new(uv[0], uv[1]));
+    let (lo, hi) = trim.bounds();
+    let rounding = 16.0 * f64::EPSILON * (hi - lo).max_element().max(1.0);
+    if trim.contains(p, rounding) {
+        // Keep the unwrapped parameters: the trim's loops live there, and evaluation wraps.
+        return FeatureLocation::Face { id, u: p.x, v: p.y };
+    }
+    let Some(near) = trim.nearest(p) else {
+        return FeatureLocation::Face { id, u: p.x, v: p.y };
+    };
+    let entry = &trim.loops[near.loop_index].entries[near.index];
+    let edge_loc = Some(FeatureLocation::Edge {
+        id: entry.edge,
+        t: near.t,
+    });
+    settle(
+        &Body::Solid {
+            solid,
+            frame: crate::feature_eval::Frame::identity(),
+        },
+        edge_loc,
+    )
+    .unwrap_or(FeatureLocation::Edge {
+        id: entry.edge,
+        t: near.t,
+    })
 }
 
 /// [`settle`] for the start of a solve: a face parameter whose point lies within coordinate
@@ -120,16 +172,10 @@ pub(crate) fn into_faces(body: &Body, loc: Loc) -> Vec<Loc> {
         .iter()
         .map(|use_| {
             let domain = solid.face(use_.face).surface.domain();
-            let [mut u, mut v] = side_params(&domain, use_.side, t);
-            let inside = |range: &geom_param::ParamRange, up: bool| {
-                1e-9 * range.span() * if up { 1.0 } else { -1.0 }
-            };
-            match use_.side {
-                ParamSide::UMin => u += inside(&domain[0], true),
-                ParamSide::UMax => u += inside(&domain[0], false),
-                ParamSide::VMin => v += inside(&domain[1], true),
-                ParamSide::VMax => v += inside(&domain[1], false),
-            }
+            let [u0, v0] = solid.use_params(use_, t);
+            let inward = solid.use_inward(use_, t).normalize_or_zero();
+            let u = u0 + 1e-9 * domain[0].span() * inward.x;
+            let v = v0 + 1e-9 * domain[1].span() * inward.y;
             settle(
                 body,
                 Some(FeatureLocation::Face {
@@ -150,23 +196,55 @@ pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Lo
         return None;
     };
     let mut best: Option<(f64, FeatureLocation)> = None;
-    let mut consider = |face_id, side, t: f64| {
-        let surface = &solid.face(face_id).surface;
-        let domain = surface.domain();
-        let [u, v] = side_params(&domain, side, t);
-        let tangent = frame.vector(inward_tangent(surface.eval(u, v), side));
-        let score = pull.dot(tangent.normalize_or_zero());
+    let mut offer = |tangent: DVec3, loc: FeatureLocation| {
+        let score = pull.dot(frame.vector(tangent).normalize_or_zero());
         if score > threshold && best.is_none_or(|(s, _)| score > s) {
-            best = Some((score, FeatureLocation::Face { id: face_id, u, v }));
+            best = Some((score, loc));
         }
+    };
+    // The direction into a face from an edge use at t (in the solid's frame) and the face
+    // location there.
+    let into_face = |use_: &EdgeUse, t: f64| {
+        let surface = &solid.face(use_.face).surface;
+        let [u, v] = solid.use_params(use_, t);
+        let inward = solid.use_inward(use_, t);
+        let s = surface.eval(u, v);
+        (
+            s.du * inward.x + s.dv * inward.y,
+            FeatureLocation::Face {
+                id: use_.face,
+                u,
+                v,
+            },
+        )
     };
     match *location {
         FeatureLocation::Edge { id, t } => {
-            for use_ in solid.edge(id).uses {
-                consider(use_.face, use_.side, t);
+            for use_ in &solid.edge(id).uses {
+                let (tangent, face) = into_face(use_, t);
+                offer(tangent, face);
             }
         }
         FeatureLocation::Vertex { id } => {
+            // Edges ending here: along the edge away from the vertex, and into its faces.
+            for &e in &solid.vertex(id).edges {
+                let edge = solid.edge(e);
+                let Some(ends) = edge.ends else { continue };
+                let range = edge.curve.domain();
+                for (end, t, away) in [(ends[0], range.min, 1.0), (ends[1], range.max, -1.0)] {
+                    if end != id {
+                        continue;
+                    }
+                    offer(
+                        away * edge.curve.eval(t).d1,
+                        FeatureLocation::Edge { id: e, t },
+                    );
+                    for use_ in &edge.uses {
+                        let (tangent, face) = into_face(use_, t);
+                        offer(tangent, face);
+                    }
+                }
+            }
             for (face_id, side) in vertex_sides(solid, id) {
                 let range = solid.face(face_id).surface.domain()[usize::from(matches!(
                     side,
@@ -175,7 +253,12 @@ pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Lo
                 for k in 0..VERTEX_EXIT_SAMPLES {
                     let t =
                         range.min + range.span() * f64::from(k) / f64::from(VERTEX_EXIT_SAMPLES);
-                    consider(face_id, side, t);
+                    let surface = &solid.face(face_id).surface;
+                    let [u, v] = side_params(&surface.domain(), side, t);
+                    offer(
+                        inward_tangent(surface.eval(u, v), side),
+                        FeatureLocation::Face { id: face_id, u, v },
+                    );
                 }
             }
         }

@@ -17,7 +17,7 @@
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 use crate::dense_solve::{cholesky, cholesky_solve, smallest_eigenvalue_bound};
-use crate::feature_eval::{Body, FeatureEval, Loc, params, side_params, with_params};
+use crate::feature_eval::{Body, FeatureEval, Loc, params, with_params};
 use crate::feature_switch::{
     into_faces, reenter, settle, settle_start, snap_to_sides, snap_within_distance,
 };
@@ -513,8 +513,7 @@ fn face_views(body: &Body, loc: &Loc, eval: &FeatureEval) -> Option<Vec<FaceView
             .uses
             .iter()
             .map(|u| {
-                let domain = solid.face(u.face).surface.domain();
-                let [fu, fv] = side_params(&domain, u.side, *t);
+                let [fu, fv] = solid.use_params(u, *t);
                 let face = Some(FeatureLocation::Face {
                     id: u.face,
                     u: fu,

@@ -46,8 +46,9 @@ pub use topology::components::{ComponentKind, SurfaceComponent};
 pub use topology::convexity::{classify_joint, classify_revolved_face};
 pub use topology::feature::{ComponentId, EdgeId, FaceId, FeatureId, FeatureLocation, VertexId};
 pub use topology::solid::{
-    Boundary, Edge, EdgeConvexity, EdgeUse, Face, FaceConvexity, ParamSide, Solid, Vertex,
+    Boundary, Edge, EdgeConvexity, EdgeOn, EdgeUse, Face, FaceConvexity, ParamSide, Solid, Vertex,
 };
+pub use topology::trim::{Trim, TrimEntry, TrimLoop, TrimNearest};
 
 pub use glam::{DQuat, DVec2, DVec3};
 /// A rigid motion (rotation + translation) in f64: parry's (glamx's) `DPose3`.

@@ -54,8 +54,10 @@ pub enum ModelError {
 pub struct ObjectModel {
     /// Name of the object.
     pub name: String,
-    /// The validated profile it was revolved from.
-    pub profile: Profile,
+    /// The validated profile it was revolved from, for a solid of revolution.
+    pub profile: Option<Profile>,
+    /// The object's size (mm): the largest absolute coordinate of its surface in its frame.
+    pub scale: f64,
     /// The exact boundary representation.
     pub solid: Solid,
     /// Surface components, indexed by [`ComponentId`].
@@ -111,7 +113,8 @@ impl ObjectModel {
         }
         Ok(Self {
             name: name.into(),
-            profile,
+            profile: Some(profile),
+            scale,
             solid,
             components,
             meshes,

@@ -906,8 +906,14 @@ fn cylinder_with_flat_ends_loads_and_builds() {
     assert_eq!(description.profile, cylinder());
     let model = description.build(&MeshOptions::default()).expect("builds");
     assert_eq!(model.name, "cylinder");
-    assert_eq!(model.profile.closure(), Closure::Axis);
-    assert_eq!(model.profile.segments().len(), 3);
+    assert_eq!(
+        model.profile.as_ref().expect("revolved").closure(),
+        Closure::Axis
+    );
+    assert_eq!(
+        model.profile.as_ref().expect("revolved").segments().len(),
+        3
+    );
     let solid = &model.solid;
     assert_eq!(
         (solid.faces.len(), solid.edges.len(), solid.vertices.len()),
@@ -940,7 +946,10 @@ fn cylinder_with_flat_ends_loads_and_builds() {
 fn two_arc_ring_loads_and_builds() {
     let text = object_json("ring", &ring());
     let model = load(&text).expect("ring builds");
-    assert_eq!(model.profile.closure(), Closure::Ring);
+    assert_eq!(
+        model.profile.as_ref().expect("revolved").closure(),
+        Closure::Ring
+    );
     let solid = &model.solid;
     assert_eq!(
         (solid.faces.len(), solid.edges.len(), solid.vertices.len()),

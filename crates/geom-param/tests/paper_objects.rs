@@ -58,12 +58,18 @@ fn topology_and_components_snapshot() {
             .solid
             .faces
             .iter()
-            .zip(m.profile.segments())
+            .zip(
+                m.profile
+                    .as_ref()
+                    .expect("a paper object is revolved")
+                    .segments(),
+            )
             .map(|(f, s)| {
                 let side = |b: Boundary| match b {
                     Boundary::Periodic => json!("periodic"),
                     Boundary::Edge(e) => json!({"edge": e.0}),
                     Boundary::Vertex(v) => json!({"vertex": v.0}),
+                    Boundary::Trimmed => json!("trimmed"),
                 };
                 json!({
                     "kind": s.kind_name(),

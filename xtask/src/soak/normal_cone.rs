@@ -60,17 +60,6 @@ impl NormalCone {
     }
 }
 
-/// The (u, v) of `face` on `side` at the running parameter `t`.
-fn on_side(solid: &Solid, face: FaceId, side: ParamSide, t: f64) -> (f64, f64) {
-    let [du, dv] = solid.face(face).surface.domain();
-    match side {
-        ParamSide::UMin => (du.min, t),
-        ParamSide::UMax => (du.max, t),
-        ParamSide::VMin => (t, dv.min),
-        ParamSide::VMax => (t, dv.max),
-    }
-}
-
 const SIDES: [ParamSide; 4] = [
     ParamSide::UMin,
     ParamSide::UMax,
@@ -157,7 +146,7 @@ pub fn normal_cone(solid: &Solid, location: &FeatureLocation) -> Option<NormalCo
             let edge = solid.edge(id);
             let t = edge.curve.domain().normalize(t);
             let mut normals = edge.uses.iter().filter_map(|u| {
-                let (fu, fv) = on_side(solid, u.face, u.side, t);
+                let [fu, fv] = solid.use_params(u, t);
                 solid.face(u.face).surface.normal(fu, fv)
             });
             match (normals.next(), normals.next()) {
@@ -190,7 +179,7 @@ pub fn local_curvature(solid: &Solid, location: &FeatureLocation) -> f64 {
             edge.uses
                 .iter()
                 .map(|u| {
-                    let (fu, fv) = on_side(solid, u.face, u.side, t);
+                    let [fu, fv] = solid.use_params(u, t);
                     at(u.face, fu, fv)
                 })
                 .fold(0.0, f64::max)

@@ -168,7 +168,7 @@ impl<'p> PropertyChecker<'p> {
             a,
             b,
             scratch: QueryScratch::default(),
-            size: a.model.profile.scale().max(b.model.profile.scale()),
+            size: a.model.scale.max(b.model.scale),
         }
     }
 

@@ -197,7 +197,7 @@ fn run_pose(
     let failures = PropertyChecker::new(pipeline, a, b).check(&pose.pose_b, &report, &mut rng)?;
     stats.add_properties(seed, &pose, failures);
     let options = pipeline.options();
-    let size = a.model.profile.scale().max(b.model.profile.scale());
+    let size = a.model.scale.max(b.model.scale);
     let oracle = oracle_report(&a.model.solid, &b.model.solid, &pose.pose_b, options)?;
     let verdict = compare(&report, &oracle, options, size, pose.target_gap);
     let mut record = |what: &str, detail: String| {

@@ -10,7 +10,7 @@ use crate::revolution::profile::{Closure, Profile};
 use crate::surfaces::revolved_surface::RevolvedSurface;
 use crate::topology::convexity::{classify_joint, classify_revolved_face};
 use crate::topology::feature::{EdgeId, FaceId, VertexId};
-use crate::topology::solid::{Boundary, Edge, EdgeUse, Face, ParamSide, Solid, Vertex};
+use crate::topology::solid::{Boundary, Edge, EdgeOn, EdgeUse, Face, ParamSide, Solid, Vertex};
 use glam::DVec3;
 
 /// The solid swept by `profile` turning about the z axis.
@@ -34,13 +34,14 @@ pub fn revolve(profile: &Profile) -> Solid {
                 uses: [
                     EdgeUse {
                         face: FaceId(id(i)),
-                        side: ParamSide::VMax,
+                        on: EdgeOn::Side(ParamSide::VMax),
                     },
                     EdgeUse {
                         face: FaceId(id(j)),
-                        side: ParamSide::VMin,
+                        on: EdgeOn::Side(ParamSide::VMin),
                     },
                 ],
+                ends: None,
                 convexity: classify_joint(&segments[i], &segments[j]),
             }
         })
@@ -63,6 +64,7 @@ pub fn revolve(profile: &Profile) -> Solid {
             Face {
                 surface: Box::new(RevolvedSurface { segment: *segment }),
                 boundary: [Boundary::Periodic, Boundary::Periodic, v_min, v_max],
+                trim: None,
                 convexity: classify_revolved_face(segment, profile.scale()),
             }
         })
@@ -90,5 +92,6 @@ pub fn revolve(profile: &Profile) -> Solid {
         faces,
         edges,
         vertices,
+        tolerance: Solid::DEFAULT_TOLERANCE,
     }
 }

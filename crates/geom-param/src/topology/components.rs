@@ -9,7 +9,7 @@
 //! makes the count minimal.
 
 use crate::topology::feature::{ComponentId, EdgeId, FaceId, VertexId};
-use crate::topology::solid::{Boundary, EdgeConvexity, FaceConvexity, Solid};
+use crate::topology::solid::{EdgeConvexity, FaceConvexity, Solid};
 
 /// Convex or concave.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -101,13 +101,9 @@ pub fn partition(solid: &Solid) -> Vec<SurfaceComponent> {
             let mut edges = Vec::new();
             let mut vertices = Vec::new();
             for &f in &faces {
-                for side in solid.faces[f].boundary {
-                    match side {
-                        Boundary::Edge(e) => edges.push(e),
-                        Boundary::Vertex(v) => vertices.push(v),
-                        Boundary::Periodic => {}
-                    }
-                }
+                let id = FaceId(u32::try_from(f).expect("fewer than 2^32 faces"));
+                edges.extend(solid.face_edges(id));
+                vertices.extend(solid.face_vertices(id));
             }
             edges.sort_unstable();
             edges.dedup();

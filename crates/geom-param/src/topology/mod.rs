@@ -4,3 +4,4 @@ pub(crate) mod components;
 pub(crate) mod convexity;
 pub(crate) mod feature;
 pub(crate) mod solid;
+pub(crate) mod trim;

@@ -1,10 +1,18 @@
 //! The boundary representation of a solid: faces, edges and vertices with adjacency and outward
 //! orientation, whatever surface and curve types they carry.
+//!
+//! A face is its surface over either the whole parameter rectangle of the surface's domain
+//! (each side bounded by an edge, a collapsed vertex, or glued to the opposite side when the
+//! parameter is periodic) or a trimmed region of it ([`Trim`]: an outer loop and holes, each a
+//! cycle of edges with a p-curve on the face). Every edge lies on exactly two faces
+//! ([`EdgeUse`]); the edge's own parameter t runs along both.
 
 use crate::curves::curve::{Curve, CurvePoint};
+use crate::curves::curve2::Curve2Point;
 use crate::surfaces::surface::{Surface, SurfacePoint};
 use crate::topology::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
-use glam::DVec3;
+use crate::topology::trim::Trim;
+use glam::{DVec2, DVec3};
 
 /// One side of a face's parameter rectangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -20,6 +28,9 @@ pub enum ParamSide {
 }
 
 /// What the face meets across one side of its parameter rectangle.
+///
+/// A trimmed face's sides are [`Boundary::Trimmed`] (its loops bound it instead), except that a
+/// periodic parameter's sides stay [`Boundary::Periodic`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Boundary {
     /// The parameter is periodic: the side is glued to the opposite one.
@@ -28,6 +39,8 @@ pub enum Boundary {
     Edge(EdgeId),
     /// The side collapses to a single point (a pole or apex).
     Vertex(VertexId),
+    /// The side lies outside the face's trimmed region: the [`Trim`]'s loops bound the face.
+    Trimmed,
 }
 
 /// Convexity of a face, from its principal curvatures with respect to the outward normal.
@@ -52,14 +65,17 @@ pub enum EdgeConvexity {
     Smooth,
 }
 
-/// A face: a surface patch over a parameter rectangle.
+/// A face: a surface patch over its parameter rectangle, or over a trimmed region of it.
 #[derive(Debug)]
 pub struct Face {
     /// The exact geometry, oriented so that ∂S/∂u × ∂S/∂v points out of the material.
     pub surface: Box<dyn Surface>,
     /// What lies beyond each side of the parameter rectangle, indexed by [`ParamSide`] order
-    /// (u_min, u_max, v_min, v_max).
+    /// (u_min, u_max, v_min, v_max). [`Boundary::Trimmed`] on every non-periodic side of a
+    /// trimmed face.
     pub boundary: [Boundary; 4],
+    /// The trimmed region, or `None` when the face is the whole parameter rectangle.
+    pub trim: Option<Trim>,
     /// Convex, flat or concave.
     pub convexity: FaceConvexity,
 }
@@ -72,13 +88,29 @@ impl Face {
     }
 }
 
+/// Where an edge runs on one of its faces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeOn {
+    /// Along a side of the face's parameter rectangle: the edge's parameter t equals the face
+    /// parameter that runs along the side (u on a v side, v on a u side).
+    Side(ParamSide),
+    /// On the face's trim: entry `index` of loop `loop_index` of [`Face::trim`], whose p-curve
+    /// gives the face's (u, v) at each t of the edge.
+    Trim {
+        /// Loop of the face's trim (0 = outer).
+        loop_index: u32,
+        /// Position in that loop.
+        index: u32,
+    },
+}
+
 /// How an edge lies on one of its faces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EdgeUse {
     /// The face.
     pub face: FaceId,
-    /// The side of the face's parameter rectangle the edge runs along.
-    pub side: ParamSide,
+    /// Where on the face the edge runs.
+    pub on: EdgeOn,
 }
 
 /// An edge: a curve where two faces meet.
@@ -86,8 +118,11 @@ pub struct EdgeUse {
 pub struct Edge {
     /// The exact geometry.
     pub curve: Box<dyn Curve>,
-    /// The two faces that meet here, with the side of each one the edge runs along.
+    /// The two faces that meet here, with where the edge runs on each.
     pub uses: [EdgeUse; 2],
+    /// The vertices at the start (t = t_min) and end (t = t_max) of a non-periodic curve;
+    /// `None` for a closed (periodic) edge.
+    pub ends: Option<[VertexId; 2]>,
     /// Ridge, valley or smooth.
     pub convexity: EdgeConvexity,
 }
@@ -112,9 +147,27 @@ pub struct Solid {
     pub edges: Vec<Edge>,
     /// Vertices, indexed by [`VertexId`].
     pub vertices: Vec<Vertex>,
+    /// The model tolerance (mm): how far an edge may lie from its faces, a vertex from its
+    /// edges' ends, and a p-curve's point from its edge's point. 0 is read as the default,
+    /// [`Solid::DEFAULT_TOLERANCE`].
+    pub tolerance: f64,
 }
 
 impl Solid {
+    /// The tolerance of a solid built in code (mm): edges meet their faces to rounding.
+    pub const DEFAULT_TOLERANCE: f64 = 1e-7;
+
+    /// The model tolerance (mm): [`Solid::tolerance`], or [`Solid::DEFAULT_TOLERANCE`] where it
+    /// is 0.
+    #[must_use]
+    pub fn model_tolerance(&self) -> f64 {
+        if self.tolerance > 0.0 {
+            self.tolerance
+        } else {
+            Self::DEFAULT_TOLERANCE
+        }
+    }
+
     /// The face with this id.
     ///
     /// # Panics
@@ -179,5 +232,116 @@ impl Solid {
             }
             _ => None,
         }
+    }
+}
+
+impl Solid {
+    /// The p-curve point of edge use `use_` at edge parameter `t`: the face's (u, v) there and
+    /// its first and second derivatives with respect to t. On a side, the running parameter is
+    /// t and the other one the side's bound.
+    ///
+    /// # Panics
+    /// If the use names a face, loop or entry that does not exist (a solid that
+    /// [`Solid::validate`] accepts has none).
+    #[must_use]
+    pub fn use_eval(&self, use_: &EdgeUse, t: f64) -> Curve2Point {
+        let face = self.face(use_.face);
+        match use_.on {
+            EdgeOn::Side(side) => {
+                let domain = face.surface.domain();
+                let point = match side {
+                    ParamSide::UMin => DVec2::new(domain[0].min, t),
+                    ParamSide::UMax => DVec2::new(domain[0].max, t),
+                    ParamSide::VMin => DVec2::new(t, domain[1].min),
+                    ParamSide::VMax => DVec2::new(t, domain[1].max),
+                };
+                let d1 = match side {
+                    ParamSide::UMin | ParamSide::UMax => DVec2::Y,
+                    ParamSide::VMin | ParamSide::VMax => DVec2::X,
+                };
+                Curve2Point {
+                    point,
+                    d1,
+                    d2: DVec2::ZERO,
+                }
+            }
+            EdgeOn::Trim { loop_index, index } => {
+                let trim = face.trim.as_ref().expect("a trim use names a trimmed face");
+                trim.loops[loop_index as usize].entries[index as usize]
+                    .pcurve
+                    .eval(t)
+            }
+        }
+    }
+
+    /// The face parameters where edge use `use_` is at edge parameter `t`.
+    ///
+    /// # Panics
+    /// As [`Solid::use_eval`].
+    #[must_use]
+    pub fn use_params(&self, use_: &EdgeUse, t: f64) -> [f64; 2] {
+        let p = self.use_eval(use_, t).point;
+        [p.x, p.y]
+    }
+
+    /// The direction in the face's (u, v) plane that points from edge use `use_` at `t` into
+    /// the face (perpendicular to the p-curve, not normalised): the left of the boundary's
+    /// traversal direction, which keeps the face on its left (outer loops counter-clockwise,
+    /// holes clockwise, rectangle sides alike).
+    ///
+    /// # Panics
+    /// As [`Solid::use_eval`].
+    #[must_use]
+    pub fn use_inward(&self, use_: &EdgeUse, t: f64) -> DVec2 {
+        match use_.on {
+            EdgeOn::Side(side) => match side {
+                ParamSide::UMin => DVec2::X,
+                ParamSide::UMax => DVec2::NEG_X,
+                ParamSide::VMin => DVec2::Y,
+                ParamSide::VMax => DVec2::NEG_Y,
+            },
+            EdgeOn::Trim { loop_index, index } => {
+                let face = self.face(use_.face);
+                let trim = face.trim.as_ref().expect("a trim use names a trimmed face");
+                let entry = &trim.loops[loop_index as usize].entries[index as usize];
+                let d1 = entry.pcurve.eval(t).d1;
+                let along = if entry.reversed { -d1 } else { d1 };
+                along.perp()
+            }
+        }
+    }
+
+    /// The edges on face `id`'s boundary: every edge with a use on it, ascending.
+    #[must_use]
+    pub fn face_edges(&self, id: FaceId) -> Vec<EdgeId> {
+        let mut out: Vec<EdgeId> = (0..self.edges.len())
+            .filter(|&e| self.edges[e].uses.iter().any(|u| u.face == id))
+            .map(|e| EdgeId(u32::try_from(e).expect("fewer than 2^32 edges")))
+            .collect();
+        out.dedup();
+        out
+    }
+
+    /// The vertices of face `id`: the ends of its edges and the vertices its sides collapse
+    /// into, ascending.
+    #[must_use]
+    pub fn face_vertices(&self, id: FaceId) -> Vec<VertexId> {
+        let mut out: Vec<VertexId> = self
+            .face(id)
+            .boundary
+            .iter()
+            .filter_map(|b| match b {
+                Boundary::Vertex(v) => Some(*v),
+                _ => None,
+            })
+            .collect();
+        for e in self.face_edges(id) {
+            if let Some(ends) = self.edge(e).ends {
+                out.extend(ends);
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
     }
 }

@@ -1,0 +1,335 @@
+//! Trimmed regions of a face's parameter plane: an outer loop and holes, each a cycle of edges
+//! with a p-curve, and the two questions every stage asks of them: is (u, v) inside, and which
+//! boundary point is nearest.
+//!
+//! Orientation (as in STEP and OpenCASCADE): walking along a loop in its direction, the face
+//! lies on the left in the (u, v) plane, whose orientation is the one in which ∂S/∂u × ∂S/∂v
+//! points out of the material. So the outer loop runs counter-clockwise and holes clockwise.
+//!
+//! Each p-curve is kept with a polyline of its points (sampled until the chord deviates from the
+//! curve by at most [`FLATNESS`] of the loop's extent, or [`MAX_SEGMENTS_PER_ENTRY`] segments).
+//! Containment is the winding number of the polylines, refined by the exact p-curve near the
+//! boundary: within the polyline's flatness of an entry, the side of the exact curve's tangent at
+//! the nearest exact point decides. Nearest points are found on the polyline and then polished by
+//! Newton's method on |c(t) - (u, v)|² over the entry's exact p-curve.
+
+use crate::curves::curve::ParamRange;
+use crate::curves::curve2::Curve2;
+use crate::topology::feature::EdgeId;
+use glam::DVec2;
+
+/// Largest chord deviation of a p-curve's polyline, relative to its loop's extent in (u, v).
+pub const FLATNESS: f64 = 1e-4;
+/// Upper bound on the segments of one entry's polyline.
+pub const MAX_SEGMENTS_PER_ENTRY: usize = 4096;
+/// Newton steps that polish a nearest boundary point found on the polyline.
+const POLISH_STEPS: usize = 8;
+
+/// One edge of a loop: the edge, its p-curve on this face and the direction the loop takes it.
+#[derive(Debug)]
+pub struct TrimEntry {
+    /// The edge.
+    pub edge: EdgeId,
+    /// c(t): the face's (u, v) at each parameter t of the edge's curve.
+    pub pcurve: Box<dyn Curve2>,
+    /// When true the loop runs along the edge from t_max to t_min.
+    pub reversed: bool,
+    /// Samples (t, c(t)) in increasing t; built by [`TrimLoop::new`].
+    polyline: Vec<(f64, DVec2)>,
+}
+
+impl TrimEntry {
+    /// An entry with its polyline not yet built (see [`TrimLoop::new`]).
+    #[must_use]
+    pub fn new(edge: EdgeId, pcurve: Box<dyn Curve2>, reversed: bool) -> Self {
+        Self {
+            edge,
+            pcurve,
+            reversed,
+            polyline: Vec::new(),
+        }
+    }
+
+    /// The polyline samples (t, c(t)), increasing t.
+    #[must_use]
+    pub fn polyline(&self) -> &[(f64, DVec2)] {
+        &self.polyline
+    }
+
+    /// The (u, v) where the loop enters this entry (t_min, or t_max when reversed).
+    #[must_use]
+    pub fn start(&self) -> DVec2 {
+        let range = self.pcurve.domain();
+        self.pcurve
+            .eval(if self.reversed { range.max } else { range.min })
+            .point
+    }
+
+    /// The (u, v) where the loop leaves this entry.
+    #[must_use]
+    pub fn end(&self) -> DVec2 {
+        let range = self.pcurve.domain();
+        self.pcurve
+            .eval(if self.reversed { range.min } else { range.max })
+            .point
+    }
+}
+
+/// A closed cycle of entries, each ending where the next begins.
+#[derive(Debug)]
+pub struct TrimLoop {
+    /// The entries in loop order.
+    pub entries: Vec<TrimEntry>,
+}
+
+impl TrimLoop {
+    /// A loop of `entries` in loop order, with the polylines built.
+    #[must_use]
+    pub fn new(mut entries: Vec<TrimEntry>) -> Self {
+        let extent = loop_extent(&entries);
+        for entry in &mut entries {
+            entry.polyline = sample_polyline(entry.pcurve.as_ref(), FLATNESS * extent);
+        }
+        Self { entries }
+    }
+
+    /// Twice the signed area enclosed by the polyline (positive counter-clockwise), following
+    /// each entry in the loop's direction.
+    #[must_use]
+    pub fn signed_area(&self) -> f64 {
+        let mut twice = 0.0;
+        for (a, b) in self.segments() {
+            twice += a.perp_dot(b);
+        }
+        0.5 * twice
+    }
+
+    /// The polyline segments in loop order.
+    pub fn segments(&self) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
+        self.entries.iter().flat_map(|entry| {
+            let points = &entry.polyline;
+            let n = points.len();
+            (1..n).map(move |k| {
+                if entry.reversed {
+                    (points[n - k].1, points[n - k - 1].1)
+                } else {
+                    (points[k - 1].1, points[k].1)
+                }
+            })
+        })
+    }
+}
+
+/// The region of a face's parameter plane inside its outer loop and outside its holes.
+#[derive(Debug)]
+pub struct Trim {
+    /// Loop 0 is the outer boundary (counter-clockwise); the others are holes (clockwise).
+    pub loops: Vec<TrimLoop>,
+    /// Periods of (u, v) where the surface is periodic (0 otherwise): a point is classified at
+    /// every shift by whole periods that brings it near the loops.
+    pub periods: [f64; 2],
+}
+
+/// The boundary point of a trim nearest to a (u, v).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrimNearest {
+    /// Loop index.
+    pub loop_index: usize,
+    /// Entry index in the loop.
+    pub index: usize,
+    /// The edge parameter of the nearest point.
+    pub t: f64,
+    /// The nearest point c(t), shifted by whole periods to lie next to the query point.
+    pub point: DVec2,
+    /// Distance in the (u, v) plane.
+    pub distance: f64,
+}
+
+impl Trim {
+    /// A trim of `loops` on a surface with the parameter `domain`.
+    #[must_use]
+    pub fn new(loops: Vec<TrimLoop>, domain: &[ParamRange; 2]) -> Self {
+        let period = |r: &ParamRange| if r.periodic { r.span() } else { 0.0 };
+        Self {
+            loops,
+            periods: [period(&domain[0]), period(&domain[1])],
+        }
+    }
+
+    /// The axis-aligned box of every loop's polyline: (min, max).
+    #[must_use]
+    pub fn bounds(&self) -> (DVec2, DVec2) {
+        let mut lo = DVec2::splat(f64::INFINITY);
+        let mut hi = DVec2::splat(f64::NEG_INFINITY);
+        for l in &self.loops {
+            for e in &l.entries {
+                for &(_, p) in &e.polyline {
+                    lo = lo.min(p);
+                    hi = hi.max(p);
+                }
+            }
+        }
+        (lo, hi)
+    }
+
+    /// The shift by whole periods that brings `uv` closest to the middle of the loops' box.
+    #[must_use]
+    pub fn unwrap(&self, uv: DVec2) -> DVec2 {
+        let (lo, hi) = self.bounds();
+        let mid = 0.5 * (lo + hi);
+        let mut out = uv;
+        for i in 0..2 {
+            let p = self.periods[i];
+            if p > 0.0 {
+                out[i] = uv[i] - p * ((uv[i] - mid[i]) / p).round();
+            }
+        }
+        out
+    }
+
+    /// Winding number of the polylines around `uv` (1 inside, 0 outside, for a valid trim).
+    fn winding(&self, uv: DVec2) -> i32 {
+        let mut w = 0;
+        for l in &self.loops {
+            for (a, b) in l.segments() {
+                if a.y <= uv.y {
+                    if b.y > uv.y && (b - a).perp_dot(uv - a) > 0.0 {
+                        w += 1;
+                    }
+                } else if b.y <= uv.y && (b - a).perp_dot(uv - a) < 0.0 {
+                    w -= 1;
+                }
+            }
+        }
+        w
+    }
+
+    /// Whether `uv` (shifted by periods, see [`Trim::unwrap`]) lies in the region, boundary
+    /// included within `tolerance` (parameter units).
+    ///
+    /// Away from the boundary (farther than the polylines' flatness) the polylines' winding
+    /// number decides; nearer, the side of the exact p-curve at the nearest exact point does.
+    #[must_use]
+    pub fn contains(&self, uv: DVec2, tolerance: f64) -> bool {
+        let uv = self.unwrap(uv);
+        let Some(near) = self.nearest(uv) else {
+            return false;
+        };
+        if near.distance <= tolerance {
+            return true;
+        }
+        let (lo, hi) = self.bounds();
+        let band = 2.0 * FLATNESS * (hi - lo).max_element();
+        if near.distance > band {
+            return self.winding(uv) != 0;
+        }
+        let entry = &self.loops[near.loop_index].entries[near.index];
+        let d1 = entry.pcurve.eval(near.t).d1;
+        let along = if entry.reversed { -d1 } else { d1 };
+        along.perp_dot(uv - near.point) > 0.0
+    }
+
+    /// The exact boundary point nearest to `uv` (after [`Trim::unwrap`]), or `None` for a trim
+    /// without loops.
+    #[must_use]
+    pub fn nearest(&self, uv: DVec2) -> Option<TrimNearest> {
+        let uv = self.unwrap(uv);
+        let mut best: Option<TrimNearest> = None;
+        for (li, l) in self.loops.iter().enumerate() {
+            for (ei, e) in l.entries.iter().enumerate() {
+                for w in e.polyline.windows(2) {
+                    let ((t0, a), (t1, b)) = (w[0], w[1]);
+                    let ab = b - a;
+                    let len2 = ab.length_squared();
+                    let s = if len2 > 0.0 {
+                        ((uv - a).dot(ab) / len2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let p = a + s * ab;
+                    let d = p.distance(uv);
+                    if best.is_none_or(|bst| d < bst.distance) {
+                        best = Some(TrimNearest {
+                            loop_index: li,
+                            index: ei,
+                            t: t0 + s * (t1 - t0),
+                            point: p,
+                            distance: d,
+                        });
+                    }
+                }
+            }
+        }
+        let mut near = best?;
+        let entry = &self.loops[near.loop_index].entries[near.index];
+        let range = entry.pcurve.domain();
+        let mut t = near.t;
+        for _ in 0..POLISH_STEPS {
+            let c = entry.pcurve.eval(t);
+            let r = c.point - uv;
+            let g = r.dot(c.d1);
+            let h = c.d1.length_squared() + r.dot(c.d2);
+            // A non-positive (or NaN) curvature term: no Newton step towards a minimum.
+            if h.is_nan() || h <= 0.0 {
+                break;
+            }
+            let next = (t - g / h).clamp(range.min, range.max);
+            if next == t {
+                break;
+            }
+            t = next;
+        }
+        let point = entry.pcurve.eval(t).point;
+        let distance = point.distance(uv);
+        if distance <= near.distance {
+            near.t = t;
+            near.point = point;
+            near.distance = distance;
+        }
+        Some(near)
+    }
+}
+
+/// The largest extent in u or v of the entries' end points and midpoints (at least 1e-300).
+fn loop_extent(entries: &[TrimEntry]) -> f64 {
+    let mut lo = DVec2::splat(f64::INFINITY);
+    let mut hi = DVec2::splat(f64::NEG_INFINITY);
+    for e in entries {
+        let r = e.pcurve.domain();
+        for k in 0..=8 {
+            let p = e.pcurve.eval(r.min + r.span() * f64::from(k) / 8.0).point;
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    }
+    (hi - lo).max_element().max(1e-300)
+}
+
+/// Samples `curve` over its domain, halving every piece whose midpoint deviates from its chord
+/// by more than `flatness`, up to [`MAX_SEGMENTS_PER_ENTRY`] pieces. Non-finite evaluations stop
+/// the subdivision (validation reports them).
+fn sample_polyline(curve: &dyn Curve2, flatness: f64) -> Vec<(f64, DVec2)> {
+    let range = curve.domain();
+    let at = |t: f64| (t, curve.eval(t).point);
+    // Start from 8 pieces so that a closed p-curve (a full circle) is not taken for a point.
+    let mut points: Vec<(f64, DVec2)> = (0..=8)
+        .map(|k| at(range.min + range.span() * f64::from(k) / 8.0))
+        .collect();
+    let mut k = 0;
+    while k + 1 < points.len() && points.len() <= MAX_SEGMENTS_PER_ENTRY {
+        let ((t0, a), (t1, b)) = (points[k], points[k + 1]);
+        let mid = at(0.5 * (t0 + t1));
+        let ab = b - a;
+        let deviation = if ab.length_squared() > 0.0 {
+            ab.perp_dot(mid.1 - a).abs() / ab.length()
+        } else {
+            mid.1.distance(a)
+        };
+        if deviation > flatness && mid.1.is_finite() {
+            points.insert(k + 1, mid);
+        } else {
+            k += 1;
+        }
+    }
+    points
+}
