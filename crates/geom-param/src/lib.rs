@@ -43,12 +43,15 @@ pub use surfaces::surface::{PrincipalCurvatures, Surface, SurfacePoint};
 pub use tessellation::component_mesh::ComponentMesh;
 pub use tessellation::convex_hull::ConvexHull;
 pub use topology::components::{ComponentKind, SurfaceComponent};
-pub use topology::convexity::{classify_joint, classify_revolved_face};
+pub use topology::convexity::{
+    classify_convexity, classify_edge, classify_face, classify_joint, classify_revolved_face,
+};
 pub use topology::feature::{ComponentId, EdgeId, FaceId, FeatureId, FeatureLocation, VertexId};
 pub use topology::solid::{
     Boundary, Edge, EdgeConvexity, EdgeOn, EdgeUse, Face, FaceConvexity, ParamSide, Solid, Vertex,
 };
 pub use topology::trim::{Trim, TrimEntry, TrimLoop, TrimNearest};
+pub use topology::validate::{TopologyError, validate};
 
 pub use glam::{DQuat, DVec2, DVec3};
 /// A rigid motion (rotation + translation) in f64: parry's (glamx's) `DPose3`.

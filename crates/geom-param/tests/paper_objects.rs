@@ -272,3 +272,11 @@ fn vertex_normals_are_unit_and_outward_on_faces() {
         }
     }
 }
+
+#[test]
+fn revolved_solids_pass_the_general_validation() {
+    for name in NAMES {
+        let m = model(name, 0.1);
+        assert_eq!(geom_param::validate(&m.solid), Ok(()), "{name}");
+    }
+}

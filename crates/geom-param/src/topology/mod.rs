@@ -5,3 +5,4 @@ pub(crate) mod convexity;
 pub(crate) mod feature;
 pub(crate) mod solid;
 pub(crate) mod trim;
+pub(crate) mod validate;
