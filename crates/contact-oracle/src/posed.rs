@@ -1,7 +1,7 @@
 //! A solid placed in the world frame: face evaluation with the pose applied to the point and
 //! every derivative, and the adjacency moves the polishers need (crossing an edge, a pole).
 
-use geom_param::{Boundary, DPose3, EdgeOn, FaceId, ParamSide, Solid, SurfacePoint};
+use geom_param::{Boundary, DPose3, FaceId, ParamSide, Solid, SurfacePoint};
 use glam::{DMat3, DVec3};
 
 /// `solid` under `pose`: world = R · local + t.
@@ -135,20 +135,20 @@ impl<'a> PosedSolid<'a> {
             return None;
         };
         let uses = self.solid.edge(edge).uses;
-        let other = if uses[0].face == face && uses[0].on == EdgeOn::Side(side) {
-            uses[1]
+        let (this, other) = if uses[0].face == face && uses[0].on.side() == Some(side) {
+            (uses[0], uses[1])
         } else {
-            uses[0]
+            (uses[1], uses[0])
         };
-        let EdgeOn::Side(other_side) = other.on else {
-            return None;
-        };
+        // FIXME(general solids): an edge on a trimmed face is not crossed here yet.
+        let other_side = other.on.side()?;
         let here = self.side_param(face, side);
         let there = self.side_param(other.face, other_side);
-        let along = uv[1 - here.index];
+        // Running parameter here -> edge parameter -> running parameter there.
+        let t = this.on.edge_param(uv[1 - here.index]);
         let mut out = [0.0; 2];
         out[there.index] = there.value;
-        out[1 - there.index] = along;
+        out[1 - there.index] = other.on.running(t);
         Some((other.face, other_side, self.normalize(other.face, out)))
     }
 }
