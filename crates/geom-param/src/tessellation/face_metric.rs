@@ -1,0 +1,128 @@
+//! Per-face measures that size a general face's mesh: the typical lengths |S_u| and |S_v| that
+//! turn its parameter plane into a plane of millimetres, and the target triangle edge length
+//! that its largest curvature allows.
+
+use crate::topology::feature::FaceId;
+use crate::topology::solid::Solid;
+use glam::DVec2;
+
+/// Samples per parameter direction (at the cell centres of a GRID x GRID grid).
+const GRID: usize = 9;
+
+/// How a face's parameter plane is scaled and how long its triangle edges may be.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FaceMetric {
+    /// The parameter box the face occupies (min corner): the whole domain, or the box of the
+    /// trim's loops (periodic parameters unwrapped as the loops give them).
+    pub lo: DVec2,
+    /// Median |∂S/∂u| and |∂S/∂v| over the box (mm per parameter unit), both > 0.
+    pub scale: DVec2,
+    /// Target edge length (mm): sqrt(6 budget / κ_max) for the largest principal curvature
+    /// magnitude κ_max sampled on the face (an equilateral triangle of side h on a sphere of
+    /// radius 1/κ deviates by about h² κ / 6), capped by the object's `max_length`.
+    pub target_length: f64,
+}
+
+impl FaceMetric {
+    /// The scaled plane point of (u, v): ((u - lo.u) |S_u|, (v - lo.v) |S_v|), in mm.
+    pub fn plane_point(self, uv: DVec2) -> DVec2 {
+        (uv - self.lo) * self.scale
+    }
+
+    /// The (u, v) of a scaled plane point.
+    pub fn params_of(self, plane: DVec2) -> DVec2 {
+        self.lo + plane / self.scale
+    }
+}
+
+/// The parameter box of face `id`: its trim's loops' box, or its whole domain.
+///
+/// # Errors
+/// A reason when the box is empty or not finite.
+pub(crate) fn param_box(solid: &Solid, id: FaceId) -> Result<(DVec2, DVec2), String> {
+    let face = solid.face(id);
+    let (lo, hi) = match &face.trim {
+        Some(trim) => trim.bounds(),
+        None => {
+            let [du, dv] = face.surface.domain();
+            (DVec2::new(du.min, dv.min), DVec2::new(du.max, dv.max))
+        }
+    };
+    if !(lo.is_finite() && hi.is_finite() && hi.x > lo.x && hi.y > lo.y) {
+        return Err(format!(
+            "its parameter region [{}, {}] x [{}, {}] is empty or unbounded",
+            lo.x, hi.x, lo.y, hi.y
+        ));
+    }
+    Ok((lo, hi))
+}
+
+/// Measures face `id` on a grid over its parameter box.
+///
+/// # Errors
+/// A reason when the surface does not evaluate to finite derivatives, or its derivatives vanish
+/// over the whole box.
+pub(crate) fn face_metric(
+    solid: &Solid,
+    id: FaceId,
+    budget: f64,
+    max_length: f64,
+) -> Result<FaceMetric, String> {
+    let (lo, hi) = param_box(solid, id)?;
+    let surface = &solid.face(id).surface;
+    let [du, dv] = surface.domain();
+    let mut lengths_u = Vec::with_capacity(GRID * GRID);
+    let mut lengths_v = Vec::with_capacity(GRID * GRID);
+    let mut curvature = 0.0_f64;
+    for i in 0..GRID {
+        for j in 0..GRID {
+            let f = DVec2::new(
+                (i as f64 + 0.5) / GRID as f64,
+                (j as f64 + 0.5) / GRID as f64,
+            );
+            let uv = lo + f * (hi - lo);
+            let (u, v) = (du.normalize(uv.x), dv.normalize(uv.y));
+            let p = surface.eval(u, v);
+            if !(p.point.is_finite() && p.du.is_finite() && p.dv.is_finite()) {
+                return Err(format!("its surface is not finite at (u, v) = ({u}, {v})"));
+            }
+            lengths_u.push(p.du.length());
+            lengths_v.push(p.dv.length());
+            if let Some(k) = surface.principal_curvatures(u, v) {
+                for kappa in [k.min.abs(), k.max.abs()] {
+                    if kappa.is_finite() {
+                        curvature = curvature.max(kappa);
+                    }
+                }
+            }
+        }
+    }
+    let scale = DVec2::new(typical(&mut lengths_u), typical(&mut lengths_v));
+    if !(scale.x > 0.0 && scale.y > 0.0 && scale.is_finite()) {
+        return Err(
+            "its parametrisation is degenerate (∂S/∂u or ∂S/∂v vanishes everywhere)".into(),
+        );
+    }
+    let from_curvature = if curvature > 0.0 {
+        (6.0 * budget / curvature).sqrt()
+    } else {
+        f64::INFINITY
+    };
+    Ok(FaceMetric {
+        lo,
+        scale,
+        target_length: from_curvature.min(max_length),
+    })
+}
+
+/// The median of `lengths`, or their largest value when the median is 0 (a face that is
+/// singular over more than half its box).
+fn typical(lengths: &mut [f64]) -> f64 {
+    lengths.sort_by(f64::total_cmp);
+    let median = lengths[lengths.len() / 2];
+    if median > 0.0 {
+        median
+    } else {
+        lengths.last().copied().unwrap_or(0.0)
+    }
+}
