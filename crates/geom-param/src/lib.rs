@@ -25,6 +25,7 @@
 //! - `json` (off by default): [`ObjectDescription::from_json`] and
 //!   [`ObjectDescription::to_json`] via serde_json.
 
+mod builders;
 mod curves;
 mod geometry_checks;
 mod geometry_error;
@@ -37,16 +38,23 @@ mod surfaces;
 mod tessellation;
 mod topology;
 
+pub use builders::build_error::BuildError;
+pub use builders::extrusion::{PlanarProfile, PlanarSegment, extrude};
+pub use builders::rounded_box::rounded_box;
+pub use builders::sew::sew_rectangles;
+pub use builders::tube::tube;
 pub use curves::circle_curve::CircleCurve;
 pub use curves::circle_edge::CircleEdge;
 pub use curves::curve::{Curve, CurvePoint, ParamRange};
-pub use curves::curve2::{Curve2, Curve2Point, Line2};
+pub use curves::curve2::{Circle2, Curve2, Curve2Point, Line2};
 pub use curves::ellipse_curve::EllipseCurve;
+pub use curves::iso_curve::IsoCurve;
 pub use curves::line_curve::LineCurve;
 pub use curves::nurbs_curve::NurbsCurve;
 pub use curves::nurbs_curve2::NurbsCurve2;
 pub use geometry_error::GeometryError;
 pub use io::object_description::{LoadError, ObjectDescription};
+pub use io::solid_description::{SolidDescription, SolidLoadError, SolidSpec};
 pub use nurbs::MAX_DEGREE;
 pub use nurbs::basis::{BSplineBasis, BasisDerivatives};
 pub use nurbs::control_point::ControlPoint;

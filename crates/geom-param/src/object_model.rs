@@ -10,8 +10,10 @@ use crate::tessellation::revolved_mesher::tessellate;
 use crate::tessellation::solid_mesher::tessellate_solid;
 use crate::tessellation::surface_extent::sampled_extent;
 use crate::topology::components::{ComponentKind, SurfaceComponent, partition};
+use crate::topology::convexity::classify_convexity;
 use crate::topology::feature::{ComponentId, FaceId};
 use crate::topology::solid::Solid;
+use crate::topology::validate::{TopologyError, validate};
 
 /// Smallest chordal tolerance relative to the object's size (largest coordinate). A 100 mm
 /// object can be meshed to 2 µm; finer meshes (hundreds of thousands of vertices) make the
@@ -60,6 +62,9 @@ pub enum ModelError {
         /// What went wrong, naming the edge, loop or parameters involved.
         reason: String,
     },
+    /// The solid is not a valid closed B-rep.
+    #[error(transparent)]
+    Topology(#[from] TopologyError),
 }
 
 /// A solid with its surface components, each with a mesh (and, for convex ones, a hull).
@@ -121,22 +126,26 @@ impl ObjectModel {
         ))
     }
 
-    /// Meshes a general solid (trimmed faces on any surface) and partitions it into components.
+    /// Validates a general solid (trimmed faces on any surface), classifies the convexity of
+    /// its faces and edges from the geometry ([`crate::classify_convexity`]; whatever the solid
+    /// carried is replaced), meshes it and partitions it into components.
     ///
-    /// The faces' and edges' convexity is taken as given (this does not classify or validate
-    /// the solid). `scale` is the largest absolute coordinate of the surface, sampled at its
+    /// `scale` is the largest absolute coordinate of the surface, sampled at its
     /// vertices, along its edges, on a grid over each face and at every mesh vertex. The solid
     /// gets no profile.
     ///
     /// # Errors
+    /// [`ModelError::Topology`] for a solid that fails [`crate::validate`];
     /// [`ModelError::BadTolerance`] for an unusable chordal tolerance (as
     /// [`ObjectModel::from_profile`]); [`ModelError::Tessellation`] for a face that cannot be
     /// meshed within it.
     pub fn from_solid(
         name: impl Into<String>,
-        solid: Solid,
+        mut solid: Solid,
         options: &MeshOptions,
     ) -> Result<Self, ModelError> {
+        validate(&solid)?;
+        classify_convexity(&mut solid);
         let tolerance = options.chordal_tolerance;
         let (lo, hi) = sampled_extent(&solid)?;
         let scale = lo.abs().max(hi.abs()).max_element();

@@ -5,6 +5,7 @@ pub(crate) mod circle_edge;
 pub(crate) mod curve;
 pub(crate) mod curve2;
 pub(crate) mod ellipse_curve;
+pub(crate) mod iso_curve;
 pub(crate) mod line_curve;
 pub(crate) mod nurbs_curve;
 pub(crate) mod nurbs_curve2;

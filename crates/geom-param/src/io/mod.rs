@@ -1,3 +1,4 @@
 //! Object file formats.
 
 pub(crate) mod object_description;
+pub(crate) mod solid_description;

@@ -243,19 +243,41 @@ fn edge_side(
 ) -> Result<SidePoints, String> {
     let solid = input.solid;
     let e = solid.edge(edge);
-    if !e
+    let Some(on) = e
         .uses
         .iter()
-        .any(|u| u.face == input.face && u.on == EdgeOn::Side(side))
-    {
+        .find(|u| u.face == input.face && u.on.side() == Some(side))
+        .map(|u| u.on)
+    else {
         return Err(format!(
             "side {side:?} is edge {} but the edge has no use on it",
             edge.0
         ));
+    };
+    // The samples by running parameter along the side (t, or −t for a reversed side),
+    // increasing.
+    let edge_samples = &input.edges[edge.0 as usize];
+    let mut pairs: Vec<(f64, u32)> = edge_samples
+        .ts
+        .iter()
+        .map(|&t| on.running(t))
+        .zip(edge_samples.ids.iter().copied())
+        .collect();
+    if matches!(on, EdgeOn::SideReversed(_)) {
+        pairs.reverse();
     }
-    let samples = &input.edges[edge.0 as usize];
+    let samples = EdgeSamples {
+        ts: pairs.iter().map(|p| p.0).collect(),
+        ids: pairs.iter().map(|p| p.1).collect(),
+    };
+    let samples = &samples;
     let (run, _) = running(&solid.face(input.face).surface.domain(), side);
     let er = e.curve.domain();
+    let er = ParamRange {
+        min: on.running(er.min).min(on.running(er.max)),
+        max: on.running(er.min).max(on.running(er.max)),
+        periodic: er.periodic,
+    };
     let tol = PARAM_MATCH * run.span();
     if run.periodic {
         if !er.periodic || (er.span() - run.span()).abs() > tol {

@@ -161,7 +161,9 @@ fn check_references(solid: &Solid) -> Result<(), ModelError> {
             }
             let face = &solid.faces[f];
             let points_back = match use_.on {
-                EdgeOn::Side(side) => face.boundary(side) == Boundary::Edge(EdgeId(e as u32)),
+                EdgeOn::Side(side) | EdgeOn::SideReversed(side) => {
+                    face.boundary(side) == Boundary::Edge(EdgeId(e as u32))
+                }
                 EdgeOn::Trim { loop_index, index } => face
                     .trim
                     .as_ref()
