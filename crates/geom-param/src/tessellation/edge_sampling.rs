@@ -305,7 +305,12 @@ pub(crate) fn sample_seam(
             None => point(s),
         }
     };
-    let initial = initial_params(range, INITIAL_PIECES_OPEN, &[]);
+    let pieces = if ends[0] == ends[1] {
+        INITIAL_PIECES_CLOSED
+    } else {
+        INITIAL_PIECES_OPEN
+    };
+    let initial = initial_params(range, pieces, &[]);
     let ts = subdivide(&initial, |a, b| {
         let (pa, pb) = (position(a)?, position(b)?);
         chord_accepts(pa, pb, budget, max_length, |s| {

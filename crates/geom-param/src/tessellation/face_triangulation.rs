@@ -15,7 +15,7 @@
 //! The result is measured, not predicted: the face's chordal error is the largest sampled
 //! deviation of its final triangles.
 
-use crate::tessellation::face_boundary::BoundaryLoop;
+use crate::tessellation::face_boundary::FaceBoundary;
 use crate::tessellation::face_metric::FaceMetric;
 use crate::tessellation::vertex_table::VertexTable;
 use crate::topology::feature::{FaceId, FeatureLocation};
@@ -104,16 +104,24 @@ struct CdtVertex {
 /// measured error within the tolerance.
 pub(crate) fn triangulate_face(
     input: &TriangulationInput<'_>,
-    loops: &[BoundaryLoop],
+    boundary: &FaceBoundary,
     table: &mut VertexTable,
 ) -> Result<FaceMesh, String> {
     // spade documents panics on precision loss (an inserted circumcenter it cannot place);
     // the inputs are checked beforehand, and this turns any that remains into an error.
-    let run = std::panic::AssertUnwindSafe(|| FaceTriangulation::new(input, loops, table)?.run());
-    match std::panic::catch_unwind(run) {
-        Ok(result) => result,
-        Err(_) => Err("the constrained triangulation lost precision".into()),
+    let run = std::panic::AssertUnwindSafe(|| {
+        FaceTriangulation::new(input, &boundary.loops, table)?.run()
+    });
+    let mut mesh = match std::panic::catch_unwind(run) {
+        Ok(result) => result?,
+        Err(_) => return Err("the constrained triangulation lost precision".into()),
+    };
+    for (ids, params) in &boundary.fans {
+        mesh.triangles.push(*ids);
+        mesh.params.push(*params);
     }
+    mesh.chordal_error = mesh.chordal_error.max(boundary.fan_error);
+    Ok(mesh)
 }
 
 struct FaceTriangulation<'a, 't> {
@@ -126,7 +134,7 @@ struct FaceTriangulation<'a, 't> {
 impl<'a, 't> FaceTriangulation<'a, 't> {
     fn new(
         input: &'a TriangulationInput<'a>,
-        loops: &[BoundaryLoop],
+        loops: &[crate::tessellation::face_boundary::BoundaryLoop],
         table: &'t mut VertexTable,
     ) -> Result<Self, String> {
         let mut cdt = Cdt::new();
@@ -343,21 +351,7 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
             self.position(tri[2])?,
         ];
         let uv = tri.map(|i| self.vertices[i].uv);
-        let mut worst = 0.0_f64;
-        for b in SAMPLES {
-            let q = uv[0] * b[0] + uv[1] * b[1] + uv[2] * b[2];
-            let exact = self.input.solid.eval_face(self.input.face, q.x, q.y).point;
-            let linear = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
-            let d = exact.distance(linear);
-            if !d.is_finite() {
-                return Err(format!(
-                    "its surface is not finite at (u, v) = ({}, {})",
-                    q.x, q.y
-                ));
-            }
-            worst = worst.max(d);
-        }
-        Ok(worst)
+        sampled_deviation(self.input.solid, self.input.face, uv, p)
     }
 
     /// The region's triangles on the solid's vertices. Triangles with two corners on the same
@@ -395,6 +389,34 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
         }
         Ok(mesh)
     }
+}
+
+/// Largest distance, at the 13 barycentric [`SAMPLES`], between the surface of `face` at the
+/// interpolated parameters and the triangle with corners `p` at parameters `uv` (mm).
+///
+/// # Errors
+/// A reason when the surface is not finite at a sample.
+pub(crate) fn sampled_deviation(
+    solid: &Solid,
+    face: FaceId,
+    uv: [DVec2; 3],
+    p: [DVec3; 3],
+) -> Result<f64, String> {
+    let mut worst = 0.0_f64;
+    for b in SAMPLES {
+        let q = uv[0] * b[0] + uv[1] * b[1] + uv[2] * b[2];
+        let exact = solid.eval_face(face, q.x, q.y).point;
+        let linear = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
+        let d = exact.distance(linear);
+        if !d.is_finite() {
+            return Err(format!(
+                "its surface is not finite at (u, v) = ({}, {})",
+                q.x, q.y
+            ));
+        }
+        worst = worst.max(d);
+    }
+    Ok(worst)
 }
 
 fn vertex_handle(i: usize) -> spade::handles::FixedVertexHandle {

@@ -88,6 +88,7 @@ pub(crate) fn tessellate_solid(
             metric,
             edges: &edges,
             edge_budget,
+            budget,
         };
         let loops = face_boundary(&boundary, &mut table).map_err(|reason| fail(face, reason))?;
         let input = TriangulationInput {
