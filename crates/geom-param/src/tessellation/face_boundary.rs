@@ -16,6 +16,7 @@ use crate::curves::curve::ParamRange;
 use crate::tessellation::edge_sampling::{EdgeSamples, Seam, SeamAxis, sample_seam};
 use crate::tessellation::face_metric::FaceMetric;
 use crate::tessellation::face_triangulation::sampled_deviation;
+use crate::tessellation::plane_map::PlaneMap;
 use crate::tessellation::vertex_table::VertexTable;
 use crate::topology::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
 use crate::topology::solid::{Boundary, EdgeOn, ParamSide, Solid};
@@ -36,10 +37,12 @@ pub(crate) type BoundaryLoop = Vec<BoundaryPoint>;
 /// A triangle built with the boundary: mesh vertices and their (u, v), counter-clockwise.
 pub(crate) type FanTriangle = ([u32; 3], [[f64; 2]; 3]);
 
-/// A face's boundary: the loops its region's triangulation is bounded by, and the pole fans
-/// already triangulated outside them.
-#[derive(Debug, Default)]
+/// A face's boundary: the loops its region's triangulation is bounded by, the plane it is
+/// triangulated in, and the pole fans already triangulated outside them.
+#[derive(Debug)]
 pub(crate) struct FaceBoundary {
+    /// The triangulation plane over the loops' parameter box.
+    pub map: PlaneMap,
     /// Loop 0 bounds the region from outside (counter-clockwise); others are holes.
     pub loops: Vec<BoundaryLoop>,
     /// Fan triangles from poles to their rings.
@@ -79,9 +82,21 @@ pub(crate) fn face_boundary(
     table: &mut VertexTable,
 ) -> Result<FaceBoundary, String> {
     if input.solid.face(input.face).trim.is_some() {
+        let loops = trimmed_boundary(input)?;
+        let mut lo = DVec2::splat(f64::INFINITY);
+        let mut hi = DVec2::splat(f64::NEG_INFINITY);
+        for p in loops.iter().flatten() {
+            lo = lo.min(p.uv);
+            hi = hi.max(p.uv);
+        }
+        if !(lo.x < hi.x && lo.y < hi.y) {
+            return Err("its boundary loops enclose no area".into());
+        }
         Ok(FaceBoundary {
-            loops: trimmed_boundary(input)?,
-            ..FaceBoundary::default()
+            map: PlaneMap::new(input.solid, input.face, lo, hi)?,
+            loops,
+            fans: Vec::new(),
+            fan_error: 0.0,
         })
     } else {
         rectangle_boundary(input, table)
@@ -152,6 +167,16 @@ fn rectangle_boundary(
             sides[side as usize] = Some(cap.ring);
         }
     }
+    let map = PlaneMap::new(
+        solid,
+        input.face,
+        DVec2::new(domain[0].min, domain[1].min),
+        DVec2::new(domain[0].max, domain[1].max),
+    )?;
+    // Seams cross the plane's stretch (a revolved face's seam runs from its smallest radius to
+    // its largest): pieces as long in the plane as a target length where the stretch is
+    // largest, so that they are graded like the triangles beside them.
+    let seam_plane = Some((&map, input.metric.target_length / map.max_stretch()));
     for side in SIDES {
         if sides[side as usize].is_some() {
             continue;
@@ -229,6 +254,7 @@ fn rectangle_boundary(
             fixed,
             range: run,
             ends,
+            plane: seam_plane,
         };
         let samples = sample_seam(
             solid,
@@ -275,6 +301,7 @@ fn rectangle_boundary(
     }
     Ok(FaceBoundary {
         loops: vec![out],
+        map,
         fans,
         fan_error,
     })
@@ -378,6 +405,7 @@ fn pole_cap(
             fixed: cut,
             range: run,
             ends: [start, start],
+            plane: None,
         };
         let ring = sample_seam(
             solid,

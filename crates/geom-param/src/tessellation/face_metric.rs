@@ -12,27 +12,12 @@ const GRID: usize = 9;
 /// How a face's parameter plane is scaled and how long its triangle edges may be.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct FaceMetric {
-    /// The parameter box the face occupies (min corner): the whole domain, or the box of the
-    /// trim's loops (periodic parameters unwrapped as the loops give them).
-    pub lo: DVec2,
     /// Median |∂S/∂u| and |∂S/∂v| over the box (mm per parameter unit), both > 0.
     pub scale: DVec2,
     /// Target edge length (mm): sqrt(6 budget / κ_max) for the largest principal curvature
     /// magnitude κ_max sampled on the face (an equilateral triangle of side h on a sphere of
     /// radius 1/κ deviates by about h² κ / 6), capped by the object's `max_length`.
     pub target_length: f64,
-}
-
-impl FaceMetric {
-    /// The scaled plane point of (u, v): ((u - lo.u) |S_u|, (v - lo.v) |S_v|), in mm.
-    pub fn plane_point(self, uv: DVec2) -> DVec2 {
-        (uv - self.lo) * self.scale
-    }
-
-    /// The (u, v) of a scaled plane point.
-    pub fn params_of(self, plane: DVec2) -> DVec2 {
-        self.lo + plane / self.scale
-    }
 }
 
 /// The parameter box of face `id`: its trim's loops' box, or its whole domain.
@@ -109,7 +94,6 @@ pub(crate) fn face_metric(
         f64::INFINITY
     };
     Ok(FaceMetric {
-        lo,
         scale,
         target_length: from_curvature.min(max_length),
     })
