@@ -16,7 +16,8 @@
 //! - Surface components ([`SurfaceComponent`], convex or concave, found from the curvature) and
 //!   their dual representation: a [`ComponentMesh`] whose vertices know their exact
 //!   [`FeatureLocation`], plus a [`ConvexHull`] for convex components. All of it is built once in
-//!   [`ObjectModel::from_profile`].
+//!   [`ObjectModel::from_profile`] (solids of revolution) or [`ObjectModel::from_solid`]
+//!   (general B-rep solids with trimmed faces).
 //! - [`Seed`]: the vocabulary Stage 2 hands to Stage 3.
 //!
 //! Units: millimetres and radians; frames: the object's own frame (its axis of revolution is z).

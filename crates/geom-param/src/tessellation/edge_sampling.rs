@@ -10,6 +10,7 @@
 
 use crate::curves::curve::ParamRange;
 use crate::tessellation::face_metric::FaceMetric;
+use crate::tessellation::plane_map::PlaneMap;
 use crate::tessellation::vertex_table::VertexTable;
 use crate::topology::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
 use crate::topology::solid::{EdgeOn, ParamSide, Solid};
@@ -243,7 +244,7 @@ pub(crate) enum SeamAxis {
 /// periodic parameter's domain start) running over `range` of the other parameter, from vertex
 /// `ends[0]` to `ends[1]`.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Seam {
+pub(crate) struct Seam<'a> {
     /// The face.
     pub face: FaceId,
     /// Which parameter the seam runs along.
@@ -254,6 +255,9 @@ pub(crate) struct Seam {
     pub range: ParamRange,
     /// The vertices at the running parameter's min and max.
     pub ends: [u32; 2],
+    /// The face's triangulation plane and the longest a seam piece may be in it (mm), or
+    /// `None` for a seam along which the plane is not stretched (a pole's ring).
+    pub plane: Option<(&'a PlaneMap, f64)>,
 }
 
 /// Samples `seam` like an edge; its interior samples become face vertices.
@@ -262,7 +266,7 @@ pub(crate) struct Seam {
 /// A reason when the surface does not evaluate to finite points along the seam.
 pub(crate) fn sample_seam(
     solid: &Solid,
-    seam: &Seam,
+    seam: &Seam<'_>,
     budget: f64,
     max_length: f64,
     table: &mut VertexTable,
@@ -273,6 +277,7 @@ pub(crate) fn sample_seam(
         fixed,
         range,
         ends,
+        plane,
     } = *seam;
     let uv = |s: f64| match axis {
         SeamAxis::AlongV => DVec2::new(fixed, s),
@@ -305,8 +310,18 @@ pub(crate) fn sample_seam(
             None => point(s),
         }
     };
-    let initial = initial_params(range, INITIAL_PIECES_OPEN, &[]);
+    let pieces = if ends[0] == ends[1] {
+        INITIAL_PIECES_CLOSED
+    } else {
+        INITIAL_PIECES_OPEN
+    };
+    let initial = initial_params(range, pieces, &[]);
     let ts = subdivide(&initial, |a, b| {
+        let plane_length =
+            |(map, _): (&PlaneMap, f64)| map.plane_point(uv(a)).distance(map.plane_point(uv(b)));
+        if plane.is_some_and(|p| plane_length(p) > p.1) {
+            return Ok(false);
+        }
         let (pa, pb) = (position(a)?, position(b)?);
         chord_accepts(pa, pb, budget, max_length, |s| {
             Ok(vec![point(a + s * (b - a))?])

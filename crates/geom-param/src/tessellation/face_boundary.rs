@@ -2,16 +2,21 @@
 //!
 //! - A face over its whole parameter rectangle: one counter-clockwise loop along the four sides
 //!   (u_min..u_max at v_min, then up u_max, back along v_max, down u_min). A side on an edge
-//!   takes the edge's samples; a side collapsed into a vertex (a pole or apex) is sampled in the
-//!   parameter plane but every sample is that one vertex; the two sides of a periodic parameter
-//!   are the two copies of one seam (the parameter line at the domain's start), sampled once, so
-//!   both copies are the same vertices.
+//!   takes the edge's samples. A side collapsed into a vertex (a pole or apex) around a periodic
+//!   parameter is cut off by a ring (the parameter line a short way in, sampled like an edge)
+//!   and closed by a fan of triangles from the pole to the ring, as a revolved pole is; any
+//!   other collapsed side is sampled in the parameter plane with every sample that one vertex
+//!   (the triangles along it have no area and are dropped). The two sides of a periodic
+//!   parameter are the two copies of one seam (the parameter line at the domain's start),
+//!   sampled once, so both copies are the same vertices.
 //! - A trimmed face: one loop per trim loop, each edge's samples mapped through its entry's
 //!   p-curve, in the loop's direction, with periodic parameters unwrapped to run continuously.
 
 use crate::curves::curve::ParamRange;
 use crate::tessellation::edge_sampling::{EdgeSamples, Seam, SeamAxis, sample_seam};
 use crate::tessellation::face_metric::FaceMetric;
+use crate::tessellation::face_triangulation::sampled_deviation;
+use crate::tessellation::plane_map::PlaneMap;
 use crate::tessellation::vertex_table::VertexTable;
 use crate::topology::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
 use crate::topology::solid::{Boundary, EdgeOn, ParamSide, Solid};
@@ -29,6 +34,23 @@ pub(crate) struct BoundaryPoint {
 /// A closed loop of boundary points; the last joins the first. The face lies on its left.
 pub(crate) type BoundaryLoop = Vec<BoundaryPoint>;
 
+/// A triangle built with the boundary: mesh vertices and their (u, v), counter-clockwise.
+pub(crate) type FanTriangle = ([u32; 3], [[f64; 2]; 3]);
+
+/// A face's boundary: the loops its region's triangulation is bounded by, the plane it is
+/// triangulated in, and the pole fans already triangulated outside them.
+#[derive(Debug)]
+pub(crate) struct FaceBoundary {
+    /// The triangulation plane over the loops' parameter box.
+    pub map: PlaneMap,
+    /// Loop 0 bounds the region from outside (counter-clockwise); others are holes.
+    pub loops: Vec<BoundaryLoop>,
+    /// Fan triangles from poles to their rings.
+    pub fans: Vec<FanTriangle>,
+    /// Largest sampled deviation of the fan triangles (mm).
+    pub fan_error: f64,
+}
+
 /// Relative mismatch allowed between parameter values that must agree (an edge's domain and
 /// the side it runs along, a sample and the start of a periodic parameter).
 const PARAM_MATCH: f64 = 1e-9;
@@ -45,8 +67,10 @@ pub(crate) struct BoundaryInput<'a> {
     pub metric: &'a FaceMetric,
     /// The samples of every edge of the solid.
     pub edges: &'a [EdgeSamples],
-    /// Chord budget for seams (mm).
+    /// Chord budget for seams and rings (mm).
     pub edge_budget: f64,
+    /// Deviation budget of pole fan triangles (mm).
+    pub budget: f64,
 }
 
 /// The loops bounding `input.face`, creating seam and pole vertices in `table`.
@@ -56,9 +80,24 @@ pub(crate) struct BoundaryInput<'a> {
 pub(crate) fn face_boundary(
     input: &BoundaryInput<'_>,
     table: &mut VertexTable,
-) -> Result<Vec<BoundaryLoop>, String> {
+) -> Result<FaceBoundary, String> {
     if input.solid.face(input.face).trim.is_some() {
-        trimmed_boundary(input)
+        let loops = trimmed_boundary(input)?;
+        let mut lo = DVec2::splat(f64::INFINITY);
+        let mut hi = DVec2::splat(f64::NEG_INFINITY);
+        for p in loops.iter().flatten() {
+            lo = lo.min(p.uv);
+            hi = hi.max(p.uv);
+        }
+        if !(lo.x < hi.x && lo.y < hi.y) {
+            return Err("its boundary loops enclose no area".into());
+        }
+        Ok(FaceBoundary {
+            map: PlaneMap::new(input.solid, input.face, lo, hi)?,
+            loops,
+            fans: Vec::new(),
+            fan_error: 0.0,
+        })
     } else {
         rectangle_boundary(input, table)
     }
@@ -95,11 +134,11 @@ fn side_uv(side: ParamSide, run: f64, fixed: f64) -> DVec2 {
 fn rectangle_boundary(
     input: &BoundaryInput<'_>,
     table: &mut VertexTable,
-) -> Result<Vec<BoundaryLoop>, String> {
+) -> Result<FaceBoundary, String> {
     let solid = input.solid;
     let face = solid.face(input.face);
-    let domain = face.surface.domain();
-    for (k, r) in domain.iter().enumerate() {
+    let full_domain = face.surface.domain();
+    for (k, r) in full_domain.iter().enumerate() {
         if !(r.min.is_finite() && r.max.is_finite() && r.max > r.min) {
             return Err(format!(
                 "parameter {k} has the empty or unbounded domain [{}, {}]",
@@ -107,13 +146,42 @@ fn rectangle_boundary(
             ));
         }
     }
+    // The rectangle the loop bounds: the domain less the pole caps.
+    let mut domain = full_domain;
+    let mut fans: Vec<FanTriangle> = Vec::new();
+    let mut fan_error = 0.0_f64;
     let mut sides: [Option<SidePoints>; 4] = [None, None, None, None];
     for side in SIDES {
-        let across = if matches!(side, ParamSide::UMin | ParamSide::UMax) {
-            domain[0]
-        } else {
-            domain[1]
+        let Boundary::Vertex(p) = face.boundary(side) else {
+            continue;
         };
+        if let Some(cap) = pole_cap(input, side, p, table)? {
+            let k = across_index(side);
+            if matches!(side, ParamSide::UMin | ParamSide::VMin) {
+                domain[k].min = cap.cut;
+            } else {
+                domain[k].max = cap.cut;
+            }
+            fans.extend(cap.fans);
+            fan_error = fan_error.max(cap.error);
+            sides[side as usize] = Some(cap.ring);
+        }
+    }
+    let map = PlaneMap::new(
+        solid,
+        input.face,
+        DVec2::new(domain[0].min, domain[1].min),
+        DVec2::new(domain[0].max, domain[1].max),
+    )?;
+    // Seams cross the plane's stretch (a revolved face's seam runs from its smallest radius to
+    // its largest): pieces as long in the plane as a target length where the stretch is
+    // largest, so that they are graded like the triangles beside them.
+    let seam_plane = Some((&map, input.metric.target_length / map.max_stretch()));
+    for side in SIDES {
+        if sides[side as usize].is_some() {
+            continue;
+        }
+        let across = full_domain[across_index(side)];
         sides[side as usize] = match face.boundary(side) {
             Boundary::Edge(e) => Some(edge_side(input, side, e)?),
             Boundary::Vertex(p) => Some(pole_side(input, side, p, table)),
@@ -186,6 +254,7 @@ fn rectangle_boundary(
             fixed,
             range: run,
             ends,
+            plane: seam_plane,
         };
         let samples = sample_seam(
             solid,
@@ -230,7 +299,154 @@ fn rectangle_boundary(
                 }),
         );
     }
-    Ok(vec![out])
+    Ok(FaceBoundary {
+        loops: vec![out],
+        map,
+        fans,
+        fan_error,
+    })
+}
+
+/// The index of the parameter that is constant along `side` (u on a u side).
+fn across_index(side: ParamSide) -> usize {
+    match side {
+        ParamSide::UMin | ParamSide::UMax => 0,
+        ParamSide::VMin | ParamSide::VMax => 1,
+    }
+}
+
+/// A pole cut off by a ring: the ring's samples (running parameter, vertex), the value of the
+/// cut parameter along it, and the fan from the pole to the ring.
+struct PoleCap {
+    ring: SidePoints,
+    cut: f64,
+    fans: Vec<FanTriangle>,
+    error: f64,
+}
+
+/// Cuts off the pole that `side` collapses into when the parameter running along the side is
+/// periodic with both its sides periodic (a sphere's or a revolved face's pole): a ring at the
+/// parameter value where the surface is about half a target length from the pole, sampled like
+/// an edge (closed, from the running parameter's start), and a fan of triangles from the pole
+/// to consecutive ring samples. The ring moves towards the pole until the fan's sampled
+/// deviation is within the budget. `None` when the side's running parameter is not periodic.
+///
+/// # Errors
+/// A reason when the surface is not finite near the pole or no ring meets the budget.
+fn pole_cap(
+    input: &BoundaryInput<'_>,
+    side: ParamSide,
+    pole: VertexId,
+    table: &mut VertexTable,
+) -> Result<Option<PoleCap>, String> {
+    let solid = input.solid;
+    let face = solid.face(input.face);
+    let domain = face.surface.domain();
+    let (run, fixed) = running(&domain, side);
+    let ends_periodic = match side {
+        ParamSide::UMin | ParamSide::UMax => {
+            face.boundary(ParamSide::VMin) == Boundary::Periodic
+                && face.boundary(ParamSide::VMax) == Boundary::Periodic
+        }
+        ParamSide::VMin | ParamSide::VMax => {
+            face.boundary(ParamSide::UMin) == Boundary::Periodic
+                && face.boundary(ParamSide::UMax) == Boundary::Periodic
+        }
+    };
+    if !(run.periodic && ends_periodic) {
+        return Ok(None);
+    }
+    add_pole_normal(input, side, pole, table);
+    let across = domain[across_index(side)];
+    let inward = if matches!(side, ParamSide::UMin | ParamSide::VMin) {
+        1.0
+    } else {
+        -1.0
+    };
+    let apex = solid.vertex(pole).point;
+    let target = 0.5 * input.metric.target_length;
+    let radius_at = |cut: f64| -> f64 {
+        (0..POLE_NORMAL_SAMPLES)
+            .map(|k| {
+                let r = run.min + run.span() * k as f64 / POLE_NORMAL_SAMPLES as f64;
+                let uv = side_uv(side, r, cut);
+                solid.eval_face(input.face, uv.x, uv.y).point.distance(apex)
+            })
+            .fold(0.0, f64::max)
+    };
+    let mut delta = 0.5 * across.span();
+    for _ in 0..60 {
+        // NaN radii do not stop the shrinking; the fan's sampling reports them.
+        if radius_at(fixed + inward * delta) <= target {
+            break;
+        }
+        delta *= 0.5;
+    }
+    let axis = match side {
+        ParamSide::UMin | ParamSide::UMax => SeamAxis::AlongV,
+        ParamSide::VMin | ParamSide::VMax => SeamAxis::AlongU,
+    };
+    let mut worst = f64::NAN;
+    for _ in 0..40 {
+        let cut = fixed + inward * delta;
+        let start_uv = side_uv(side, run.min, cut);
+        let location = FeatureLocation::Face {
+            id: input.face,
+            u: start_uv.x,
+            v: start_uv.y,
+        };
+        let start = table.add(solid, location);
+        if let Some(n) = solid.face_normal_at(&location) {
+            table.add_normal(start, input.face, n);
+        }
+        let seam = Seam {
+            face: input.face,
+            axis,
+            fixed: cut,
+            range: run,
+            ends: [start, start],
+            plane: None,
+        };
+        let ring = sample_seam(
+            solid,
+            &seam,
+            input.edge_budget,
+            input.metric.target_length,
+            table,
+        )?;
+        let mut fans = Vec::with_capacity(ring.ts.len());
+        let mut error = 0.0_f64;
+        for k in 0..ring.ts.len() - 1 {
+            let (ta, tb) = (ring.ts[k], ring.ts[k + 1]);
+            let pole_uv = side_uv(side, 0.5 * (ta + tb), fixed);
+            let mut corners = [
+                (pole_uv, pole.0),
+                (side_uv(side, ta, cut), ring.ids[k]),
+                (side_uv(side, tb, cut), ring.ids[k + 1]),
+            ];
+            if (corners[1].0 - pole_uv).perp_dot(corners[2].0 - pole_uv) < 0.0 {
+                corners.swap(1, 2);
+            }
+            let uv = corners.map(|c| c.0);
+            let p = corners.map(|c| table.get(c.1).position);
+            error = error.max(sampled_deviation(solid, input.face, uv, p)?);
+            fans.push((corners.map(|c| c.1), uv.map(|q| q.to_array())));
+        }
+        if error <= input.budget {
+            return Ok(Some(PoleCap {
+                ring: ring.ts.into_iter().zip(ring.ids).collect(),
+                cut,
+                fans,
+                error,
+            }));
+        }
+        worst = error;
+        delta *= 0.5;
+    }
+    Err(format!(
+        "the fan around vertex {} deviates by {worst} mm however close its ring",
+        pole.0
+    ))
 }
 
 /// The samples of edge `edge` along `side`, in increasing running parameter. On a periodic
@@ -345,7 +561,7 @@ fn pole_side(
     let solid = input.solid;
     let surface = &solid.face(input.face).surface;
     let domain = surface.domain();
-    let (run, fixed) = running(&domain, side);
+    let (run, _) = running(&domain, side);
     let along = match side {
         ParamSide::UMin | ParamSide::UMax => input.metric.scale.y,
         ParamSide::VMin | ParamSide::VMax => input.metric.scale.x,
@@ -353,6 +569,23 @@ fn pole_side(
     let length = run.span() * along;
     let n = ((length / input.metric.target_length).ceil() as usize).clamp(2, 1 << 12);
 
+    add_pole_normal(input, side, pole, table);
+    (0..=n)
+        .map(|k| (run.min + run.span() * k as f64 / n as f64, pole.0))
+        .collect()
+}
+
+/// Adds the face's normal at the pole `side` collapses into: its mean around the side, or just
+/// inside where the side itself has none (the parametrisation is singular there).
+fn add_pole_normal(
+    input: &BoundaryInput<'_>,
+    side: ParamSide,
+    pole: VertexId,
+    table: &mut VertexTable,
+) {
+    let surface = &input.solid.face(input.face).surface;
+    let domain = surface.domain();
+    let (run, fixed) = running(&domain, side);
     let (across, inward) = match side {
         ParamSide::UMin => (domain[0], 1.0),
         ParamSide::UMax => (domain[0], -1.0),
@@ -375,9 +608,6 @@ fn pole_side(
     if let Some(n) = sum.try_normalize() {
         table.add_normal(pole.0, input.face, n);
     }
-    (0..=n)
-        .map(|k| (run.min + run.span() * k as f64 / n as f64, pole.0))
-        .collect()
 }
 
 fn trimmed_boundary(input: &BoundaryInput<'_>) -> Result<Vec<BoundaryLoop>, String> {

@@ -6,33 +6,23 @@ use crate::topology::feature::FaceId;
 use crate::topology::solid::Solid;
 use glam::DVec2;
 
+/// How much longer than the curvature's equilateral side a face's target length may be.
+const CURVATURE_SLACK: f64 = 4.0;
 /// Samples per parameter direction (at the cell centres of a GRID x GRID grid).
 const GRID: usize = 9;
 
 /// How a face's parameter plane is scaled and how long its triangle edges may be.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct FaceMetric {
-    /// The parameter box the face occupies (min corner): the whole domain, or the box of the
-    /// trim's loops (periodic parameters unwrapped as the loops give them).
-    pub lo: DVec2,
     /// Median |∂S/∂u| and |∂S/∂v| over the box (mm per parameter unit), both > 0.
     pub scale: DVec2,
-    /// Target edge length (mm): sqrt(6 budget / κ_max) for the largest principal curvature
-    /// magnitude κ_max sampled on the face (an equilateral triangle of side h on a sphere of
-    /// radius 1/κ deviates by about h² κ / 6), capped by the object's `max_length`.
+    /// Target edge length (mm): the object's `max_length`, or less on a face whose largest
+    /// principal curvature magnitude κ_max (sampled) is high, but never below
+    /// CURVATURE_SLACK x sqrt(6 budget / κ_max) (an equilateral triangle of side h on a sphere
+    /// of radius 1/κ deviates by about h² κ / 6). The slack leaves curvature to the
+    /// error refinement, which grades the mesh where the face bends most instead of refining
+    /// the whole face to its most curved point.
     pub target_length: f64,
-}
-
-impl FaceMetric {
-    /// The scaled plane point of (u, v): ((u - lo.u) |S_u|, (v - lo.v) |S_v|), in mm.
-    pub fn plane_point(self, uv: DVec2) -> DVec2 {
-        (uv - self.lo) * self.scale
-    }
-
-    /// The (u, v) of a scaled plane point.
-    pub fn params_of(self, plane: DVec2) -> DVec2 {
-        self.lo + plane / self.scale
-    }
 }
 
 /// The parameter box of face `id`: its trim's loops' box, or its whole domain.
@@ -109,9 +99,8 @@ pub(crate) fn face_metric(
         f64::INFINITY
     };
     Ok(FaceMetric {
-        lo,
         scale,
-        target_length: from_curvature.min(max_length),
+        target_length: max_length.min(CURVATURE_SLACK * from_curvature),
     })
 }
 

@@ -1,22 +1,24 @@
 //! Triangulation of one face's region: a constrained Delaunay triangulation (spade) of its
 //! boundary loops in the scaled parameter plane, refined for shape and then by measured error.
 //!
-//! The scaled plane maps (u, v) to ((u - u₀) |S_u|, (v - v₀) |S_v|) with typical derivative
-//! lengths, so that lengths and angles there approximate those on the surface. The region is
+//! The plane (`plane_map.rs`) scales (u, v) by typical derivative lengths and warps one of them
+//! where needed, so that lengths and angles there approximate those on the surface. The region is
 //! what lies inside an odd number of loops (found by crossing constraint edges from outside).
 //! Refinement alternates two steps until every triangle meets the budget:
-//! - shape: Ruppert-Chew refinement with a 20° angle limit and an area cap of half the square
-//!   of the face's target length, never splitting a boundary segment (the neighbouring face
-//!   shares it), so triangles stay stout and triangle trees over the mesh can cull;
-//! - error: each triangle is sampled at 13 barycentric points (quarters and the centroid), the
-//!   distance between S(Σ bᵢ uvᵢ) and Σ bᵢ Pᵢ is taken, and a triangle over budget gets a
-//!   vertex at its centroid.
+//! - shape: Ruppert-Chew refinement with a 20° angle limit and an area cap from the face's
+//!   target length, never splitting a boundary segment (the neighbouring face shares it), so
+//!   triangles stay stout and triangle trees over the mesh can cull;
+//! - error and size: each triangle is sampled at 13 barycentric points (quarters and the
+//!   centroid), the distance between S(Σ bᵢ uvᵢ) and Σ bᵢ Pᵢ is taken, and a triangle over
+//!   budget, or with a side longer than 1.5 target lengths in space, gets a vertex at its
+//!   centroid.
 //!
 //! The result is measured, not predicted: the face's chordal error is the largest sampled
 //! deviation of its final triangles.
 
-use crate::tessellation::face_boundary::BoundaryLoop;
+use crate::tessellation::face_boundary::FaceBoundary;
 use crate::tessellation::face_metric::FaceMetric;
+use crate::tessellation::plane_map::PlaneMap;
 use crate::tessellation::vertex_table::VertexTable;
 use crate::topology::feature::{FaceId, FeatureLocation};
 use crate::topology::solid::Solid;
@@ -37,6 +39,10 @@ const MAX_AREA_FRACTION: f64 = 0.5;
 /// Triangles smaller than this fraction of the target length squared are left as they are by
 /// the shape refinement (it cannot improve angles that the boundary imposes).
 const MIN_AREA_FRACTION: f64 = 1e-8;
+/// Longest triangle side, as a fraction of the face's target length, before a triangle is
+/// split for size (an equilateral triangle of the shape refinement's largest area has sides of
+/// about 1.07 target lengths).
+const MAX_EDGE_FRACTION: f64 = 1.5;
 /// Passes of error refinement before giving up.
 const MAX_PASSES: usize = 48;
 /// Vertices one face may reach before giving up.
@@ -104,20 +110,28 @@ struct CdtVertex {
 /// measured error within the tolerance.
 pub(crate) fn triangulate_face(
     input: &TriangulationInput<'_>,
-    loops: &[BoundaryLoop],
+    boundary: &FaceBoundary,
     table: &mut VertexTable,
 ) -> Result<FaceMesh, String> {
     // spade documents panics on precision loss (an inserted circumcenter it cannot place);
     // the inputs are checked beforehand, and this turns any that remains into an error.
-    let run = std::panic::AssertUnwindSafe(|| FaceTriangulation::new(input, loops, table)?.run());
-    match std::panic::catch_unwind(run) {
-        Ok(result) => result,
-        Err(_) => Err("the constrained triangulation lost precision".into()),
+    let run =
+        std::panic::AssertUnwindSafe(|| FaceTriangulation::new(input, boundary, table)?.run());
+    let mut mesh = match std::panic::catch_unwind(run) {
+        Ok(result) => result?,
+        Err(_) => return Err("the constrained triangulation lost precision".into()),
+    };
+    for (ids, params) in &boundary.fans {
+        mesh.triangles.push(*ids);
+        mesh.params.push(*params);
     }
+    mesh.chordal_error = mesh.chordal_error.max(boundary.fan_error);
+    Ok(mesh)
 }
 
 struct FaceTriangulation<'a, 't> {
     input: &'a TriangulationInput<'a>,
+    map: PlaneMap,
     table: &'t mut VertexTable,
     cdt: Cdt,
     vertices: Vec<CdtVertex>,
@@ -126,16 +140,18 @@ struct FaceTriangulation<'a, 't> {
 impl<'a, 't> FaceTriangulation<'a, 't> {
     fn new(
         input: &'a TriangulationInput<'a>,
-        loops: &[BoundaryLoop],
+        boundary: &FaceBoundary,
         table: &'t mut VertexTable,
     ) -> Result<Self, String> {
+        let loops = &boundary.loops;
+        let map = boundary.map.clone();
         let mut cdt = Cdt::new();
         let mut vertices = Vec::new();
         let mut handles = Vec::with_capacity(loops.len());
         for (li, l) in loops.iter().enumerate() {
             let mut loop_handles = Vec::with_capacity(l.len());
             for p in l {
-                let q = input.metric.plane_point(p.uv);
+                let q = map.plane_point(p.uv);
                 let h = cdt
                     .insert(Point2::new(q.x, q.y))
                     .map_err(|e| format!("loop {li} has a point spade rejects: {e:?}"))?;
@@ -167,6 +183,7 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
         }
         Ok(Self {
             input,
+            map,
             table,
             cdt,
             vertices,
@@ -183,11 +200,12 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
             let mut bad: Vec<Point2<f64>> = Vec::new();
             worst = 0.0;
             let mut any = false;
+            let max_edge = MAX_EDGE_FRACTION * self.input.metric.target_length;
             for tri in self.region_triangles(&region) {
                 any = true;
                 let error = self.triangle_error(tri)?;
                 worst = worst.max(error);
-                if error > self.input.budget {
+                if error > self.input.budget || self.longest_edge(tri) > max_edge {
                     let c = tri
                         .iter()
                         .map(|&i| self.cdt.vertex(vertex_handle(i)).position())
@@ -228,7 +246,9 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
 
     /// Ruppert-Chew shape refinement inside the region, keeping the boundary segments whole.
     fn refine_shape(&mut self) {
-        let h = self.input.metric.target_length;
+        // In the plane, the target length is divided by the local stretch; the cap uses the
+        // smallest stretch, and the 3D size check in `run` refines where it is larger.
+        let h = self.input.metric.target_length / self.map.min_stretch();
         let n = self.cdt.num_vertices();
         let room = MAX_FACE_VERTICES.saturating_sub(n).min(4 * n + 1024);
         let parameters = RefinementParameters::<f64>::new()
@@ -246,7 +266,7 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
         for i in self.vertices.len()..self.cdt.num_vertices() {
             let p = self.cdt.vertex(vertex_handle(i)).position();
             self.vertices.push(CdtVertex {
-                uv: self.input.metric.params_of(DVec2::new(p.x, p.y)),
+                uv: self.map.params_of(DVec2::new(p.x, p.y)),
                 id: None,
                 position: None,
             });
@@ -335,6 +355,14 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
         }
     }
 
+    /// The longest side of the triangle in space (mm).
+    fn longest_edge(&self, tri: [usize; 3]) -> f64 {
+        let p = tri.map(|i| self.vertices[i].position.unwrap_or(DVec3::ZERO));
+        (0..3)
+            .map(|k| p[k].distance(p[(k + 1) % 3]))
+            .fold(0.0, f64::max)
+    }
+
     /// Largest sampled distance between the surface and the triangle (mm).
     fn triangle_error(&mut self, tri: [usize; 3]) -> Result<f64, String> {
         let p = [
@@ -343,21 +371,7 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
             self.position(tri[2])?,
         ];
         let uv = tri.map(|i| self.vertices[i].uv);
-        let mut worst = 0.0_f64;
-        for b in SAMPLES {
-            let q = uv[0] * b[0] + uv[1] * b[1] + uv[2] * b[2];
-            let exact = self.input.solid.eval_face(self.input.face, q.x, q.y).point;
-            let linear = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
-            let d = exact.distance(linear);
-            if !d.is_finite() {
-                return Err(format!(
-                    "its surface is not finite at (u, v) = ({}, {})",
-                    q.x, q.y
-                ));
-            }
-            worst = worst.max(d);
-        }
-        Ok(worst)
+        sampled_deviation(self.input.solid, self.input.face, uv, p)
     }
 
     /// The region's triangles on the solid's vertices. Triangles with two corners on the same
@@ -395,6 +409,34 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
         }
         Ok(mesh)
     }
+}
+
+/// Largest distance, at the 13 barycentric [`SAMPLES`], between the surface of `face` at the
+/// interpolated parameters and the triangle with corners `p` at parameters `uv` (mm).
+///
+/// # Errors
+/// A reason when the surface is not finite at a sample.
+pub(crate) fn sampled_deviation(
+    solid: &Solid,
+    face: FaceId,
+    uv: [DVec2; 3],
+    p: [DVec3; 3],
+) -> Result<f64, String> {
+    let mut worst = 0.0_f64;
+    for b in SAMPLES {
+        let q = uv[0] * b[0] + uv[1] * b[1] + uv[2] * b[2];
+        let exact = solid.eval_face(face, q.x, q.y).point;
+        let linear = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
+        let d = exact.distance(linear);
+        if !d.is_finite() {
+            return Err(format!(
+                "its surface is not finite at (u, v) = ({}, {})",
+                q.x, q.y
+            ));
+        }
+        worst = worst.max(d);
+    }
+    Ok(worst)
 }
 
 fn vertex_handle(i: usize) -> spade::handles::FixedVertexHandle {

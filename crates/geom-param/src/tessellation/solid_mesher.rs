@@ -16,7 +16,8 @@
 //! points), edge chords to half of that (a triangle along an edge is then bounded by its
 //! interior, which refinement controls). The target length caps every edge at
 //! sqrt(6 budget size) for the solid's half diagonal `size` (the spacing a sphere of the
-//! object's size would need), and below that at sqrt(6 budget / κ_max) per face.
+//! object's size would need), and below that at 4 sqrt(6 budget / κ_max) per face (the
+//! measured-error refinement grades the mesh down to the curvature where it is needed).
 
 use crate::object_model::ModelError;
 use crate::tessellation::component_mesh::ComponentMesh;
@@ -88,6 +89,7 @@ pub(crate) fn tessellate_solid(
             metric,
             edges: &edges,
             edge_budget,
+            budget,
         };
         let loops = face_boundary(&boundary, &mut table).map_err(|reason| fail(face, reason))?;
         let input = TriangulationInput {
