@@ -12,8 +12,8 @@ use geom_param::{
     Boundary, CircleEdge, Closure, ComponentMesh, Curve, Curve2, Curve2Point, CurvePoint, DVec2,
     DVec3, Edge, EdgeConvexity, EdgeId, EdgeOn, EdgeUse, Face, FaceConvexity, FaceId,
     FeatureLocation, Line2, MeshOptions, ModelError, ObjectDescription, ObjectModel, ParamRange,
-    ParamSide, Profile, RevolvedSurface, Solid, Surface, SurfacePoint, Trim, TrimEntry, TrimLoop,
-    Vertex, VertexId, classify_joint, classify_revolved_face,
+    ParamSide, Profile, RevolvedSurface, Solid, Surface, SurfacePoint, TopologyError, Trim,
+    TrimEntry, TrimLoop, Vertex, VertexId, classify_joint, classify_revolved_face,
 };
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
@@ -1049,14 +1049,12 @@ fn paper_objects_agree_with_the_revolved_mesher() {
 fn a_face_that_does_not_evaluate_is_an_error() {
     let mut solid = box_solid(DVec3::splat(10.0));
     solid.faces[3].surface = Box::new(Broken);
-    solid.faces[3].trim = None;
     match ObjectModel::from_solid("broken", solid, &options(0.05)) {
-        Err(ModelError::Tessellation { face, reason }) => {
-            assert_eq!(face, FaceId(3));
-            assert!(reason.contains("not finite"), "{reason}");
+        Err(ModelError::Topology(TopologyError::NonFinite { what })) => {
+            assert!(what.contains("face 3"), "{what}");
         }
         other => panic!(
-            "expected a tessellation error, got {:?}",
+            "expected a non-finite face, got {:?}",
             other.map(|m| m.name)
         ),
     }
@@ -1114,14 +1112,12 @@ fn a_loop_without_area_is_an_error() {
             .into(),
         tolerance: 0.0,
     };
+    // Validation refuses it first: each edge lies on one face only (an open shell).
     let result = ObjectModel::from_solid("flat loop", solid, &options(0.05));
     assert!(
         matches!(
             result,
-            Err(ModelError::Tessellation {
-                face: FaceId(0),
-                ..
-            })
+            Err(ModelError::Topology(TopologyError::EdgeUseCount { .. }))
         ),
         "{:?}",
         result.map(|m| m.name)
@@ -1138,7 +1134,10 @@ fn a_use_that_does_not_point_back_is_an_error() {
     };
     let result = ObjectModel::from_solid("bad use", solid, &options(0.05));
     assert!(
-        matches!(result, Err(ModelError::Tessellation { .. })),
+        matches!(
+            result,
+            Err(ModelError::Topology(TopologyError::BadReference { .. }))
+        ),
         "{:?}",
         result.map(|m| m.name)
     );

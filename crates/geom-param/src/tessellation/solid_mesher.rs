@@ -29,7 +29,7 @@ use crate::tessellation::surface_extent::sampled_extent;
 use crate::tessellation::vertex_table::{TableVertex, VertexTable};
 use crate::topology::components::SurfaceComponent;
 use crate::topology::feature::{EdgeId, FaceId};
-use crate::topology::solid::{Boundary, EdgeOn, Solid};
+use crate::topology::solid::Solid;
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -47,7 +47,9 @@ pub(crate) struct SolidTessellation {
     faces: Vec<FaceMesh>,
 }
 
-/// Tessellates `solid` so that every face's measured chordal error is within `tolerance` (mm).
+/// Tessellates `solid`, which must have passed [`crate::validate`] (every id in range, every
+/// use pointing back at its edge), so that every face's measured chordal error is within
+/// `tolerance` (mm).
 ///
 /// # Errors
 /// [`ModelError::Tessellation`] for a face that cannot be meshed: a surface or curve that
@@ -57,7 +59,6 @@ pub(crate) fn tessellate_solid(
     solid: &Solid,
     tolerance: f64,
 ) -> Result<SolidTessellation, ModelError> {
-    check_references(solid)?;
     let (lo, hi) = sampled_extent(solid)?;
     let size = 0.5 * (hi - lo).length();
     let budget = BUDGET_FRACTION * tolerance;
@@ -111,80 +112,6 @@ pub(crate) fn tessellate_solid(
         normals,
         faces,
     })
-}
-
-/// Checks that every id the solid's topology names exists and that each edge use points back
-/// at its edge (a side bounded by the edge, a trim entry of the edge), so that evaluating uses
-/// and building boundaries cannot index out of range.
-fn check_references(solid: &Solid) -> Result<(), ModelError> {
-    let (nf, ne, nv) = (solid.faces.len(), solid.edges.len(), solid.vertices.len());
-    for (f, face) in solid.faces.iter().enumerate() {
-        let id = FaceId(f as u32);
-        for b in face.boundary {
-            match b {
-                Boundary::Edge(e) if e.0 as usize >= ne => {
-                    return Err(fail(id, format!("a side names edge {} of {ne}", e.0)));
-                }
-                Boundary::Vertex(v) if v.0 as usize >= nv => {
-                    return Err(fail(id, format!("a side names vertex {} of {nv}", v.0)));
-                }
-                _ => {}
-            }
-        }
-        for (li, l) in face.trim.iter().flat_map(|t| t.loops.iter()).enumerate() {
-            for (k, entry) in l.entries.iter().enumerate() {
-                if entry.edge.0 as usize >= ne {
-                    return Err(fail(
-                        id,
-                        format!("entry {k} of loop {li} names edge {} of {ne}", entry.edge.0),
-                    ));
-                }
-            }
-        }
-    }
-    for (e, edge) in solid.edges.iter().enumerate() {
-        let first = edge.uses[0].face;
-        if edge
-            .ends
-            .is_some_and(|ends| ends.iter().any(|v| v.0 as usize >= nv))
-        {
-            return Err(fail(
-                first,
-                format!("edge {e} ends at a vertex that does not exist"),
-            ));
-        }
-        for use_ in &edge.uses {
-            let f = use_.face.0 as usize;
-            if f >= nf {
-                return Err(fail(
-                    FaceId(0),
-                    format!("edge {e} lies on face {f} of {nf}"),
-                ));
-            }
-            let face = &solid.faces[f];
-            let points_back = match use_.on {
-                EdgeOn::Side(side) | EdgeOn::SideReversed(side) => {
-                    face.boundary(side) == Boundary::Edge(EdgeId(e as u32))
-                }
-                EdgeOn::Trim { loop_index, index } => face
-                    .trim
-                    .as_ref()
-                    .and_then(|t| t.loops.get(loop_index as usize))
-                    .and_then(|l| l.entries.get(index as usize))
-                    .is_some_and(|entry| entry.edge.0 as usize == e),
-            };
-            if !points_back {
-                return Err(fail(
-                    use_.face,
-                    format!(
-                        "edge {e} has a use {:?} that is not this edge on the face",
-                        use_.on
-                    ),
-                ));
-            }
-        }
-    }
-    Ok(())
 }
 
 fn fail(face: FaceId, reason: String) -> ModelError {
