@@ -4,7 +4,7 @@
 //! finite mesh positions, normals and chordal error. Deterministic: a seeded SplitMix64.
 #![cfg(feature = "json")]
 
-use geom_param::{MeshOptions, ObjectDescription, ObjectModel, Profile, SegmentSpec};
+use geom_param::{ObjectFile, MeshOptions, ObjectDescription, ObjectModel, Profile, SegmentSpec};
 use serde_json::Value;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -98,12 +98,21 @@ fn build(specs: &[SegmentSpec], tally: &mut Tally, what: &str) {
     }
 }
 
+/// Whether the object file at `path` is a solid of revolution (a top-level `profile`).
+fn is_revolved(path: &Path) -> bool {
+    std::fs::read_to_string(path)
+        .ok()
+        .and_then(|t| serde_json::from_str::<Value>(&t).ok())
+        .is_some_and(|v| v.get("profile").is_some())
+}
+
 fn fixture_texts() -> Vec<(String, String)> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/objects");
     let mut out = Vec::new();
     for entry in std::fs::read_dir(&dir).expect("fixtures/objects") {
         let path = entry.expect("entry").path();
-        if path.extension().is_some_and(|e| e == "json") {
+        // The general (builder) objects are fuzzed on their own below.
+        if path.extension().is_some_and(|e| e == "json") && is_revolved(&path) {
             let name = path
                 .file_stem()
                 .expect("stem")
@@ -605,4 +614,61 @@ fn jar_scaled_by_1000_builds_in_bounded_time() {
         Ok(result) => println!("jar x1000: {result:?}"),
         Err(_) => panic!("jar x1000 at 0.5 mm: build still running after 10 s"),
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// General (builder) objects: their numbers replaced by extreme values, keys dropped.
+
+/// Every number in `value`, depth first.
+fn numbers_mut(value: &mut Value) -> Vec<&mut Value> {
+    match value {
+        Value::Number(_) => vec![value],
+        Value::Array(items) => items.iter_mut().flat_map(numbers_mut).collect(),
+        Value::Object(map) => map.values_mut().flat_map(numbers_mut).collect(),
+        _ => Vec::new(),
+    }
+}
+
+#[test]
+fn mutated_general_fixtures_never_panic() {
+    const VALUES: [f64; 9] = [0.0, -1.0, 1e-300, 1e300, -1e300, 5e-324, 1e-9, 1e6, 0.5];
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/objects");
+    let mut rng = SplitMix64(0x6E4E_2A11);
+    let (mut cases, mut built, mut refused) = (0, 0, 0);
+    let mut general = 0;
+    for entry in std::fs::read_dir(&dir).expect("fixtures/objects") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_none_or(|e| e != "json") || is_revolved(&path) {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).expect("fixture");
+        general += 1;
+        let original: Value = serde_json::from_str(&text).expect("fixture JSON");
+        for _ in 0..40 {
+            let mut value = original.clone();
+            let mut slots = numbers_mut(&mut value);
+            for _ in 0..1 + rng.below(2) {
+                let k = rng.below(slots.len());
+                let v = VALUES[rng.below(VALUES.len())];
+                *slots[k] = serde_json::json!(v);
+            }
+            let text = serde_json::to_string(&value).expect("serialise");
+            cases += 1;
+            let start = Instant::now();
+            let result = ObjectFile::from_json(&text).map(|f| f.build(&OPTIONS));
+            if std::env::var_os("ROBUST_TRACE").is_some() {
+                eprintln!("TIME {:?} {text}", start.elapsed());
+            }
+            match result {
+                Ok(Ok(model)) => {
+                    built += 1;
+                    check_model(&model, &text);
+                }
+                _ => refused += 1,
+            }
+        }
+    }
+    println!("general fixtures: {cases} cases, {built} built, {refused} refused");
+    assert!(general >= 3, "the general fixture objects");
+    assert!(refused > 0 && built > 0, "both outcomes are exercised");
 }

@@ -7,3 +7,8 @@ pub(crate) mod extrusion;
 pub(crate) mod rounded_box;
 pub(crate) mod sew;
 pub(crate) mod tube;
+
+/// The smallest feature a builder makes (a fillet radius, a wall), relative to the solid's
+/// size: below it a feature is numerically an edge, and meshing it at any usable chordal
+/// tolerance is degenerate.
+pub(crate) const MIN_RELATIVE_FEATURE: f64 = 1e-6;

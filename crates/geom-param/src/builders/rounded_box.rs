@@ -2,6 +2,7 @@
 //! tangent-continuous, sewn along their sides.
 
 use crate::builders::build_error::BuildError;
+use crate::builders::MIN_RELATIVE_FEATURE;
 use crate::builders::sew::sew_rectangles;
 use crate::curves::curve::ParamRange;
 use crate::surfaces::cylinder_surface::CylinderSurface;
@@ -48,11 +49,13 @@ pub fn rounded_box(half_extents: DVec3, radius: f64) -> Result<Solid, BuildError
             requirement: "finite and > 0",
         });
     }
-    if !(radius > 0.0 && radius < half_extents.min_element()) {
+    if !(radius >= MIN_RELATIVE_FEATURE * half_extents.max_element()
+        && radius < half_extents.min_element())
+    {
         return Err(BuildError::BadDimension {
             what: "fillet radius",
             value: radius,
-            requirement: "> 0 and below the smallest half extent",
+            requirement: "at least 1e-6 of the largest half extent and below the smallest",
         });
     }
     let inner = half_extents - DVec3::splat(radius);

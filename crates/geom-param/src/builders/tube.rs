@@ -2,6 +2,7 @@
 //! its outward normal points at the axis) and two annular caps, trimmed planes whose inner
 //! loop is the hole.
 
+use crate::builders::MIN_RELATIVE_FEATURE;
 use crate::builders::build_error::BuildError;
 use crate::curves::circle_curve::CircleCurve;
 use crate::curves::curve::ParamRange;
@@ -41,8 +42,8 @@ fn range(min: f64, max: f64) -> ParamRange {
 /// size.
 ///
 /// # Errors
-/// [`BuildError::BadDimension`] unless 0 < `inner_radius` < `outer_radius` and `length` > 0,
-/// all finite.
+/// [`BuildError::BadDimension`] unless every dimension is finite, the hole radius, the wall
+/// thickness and the length at least 1e-6 of the size.
 pub fn tube(outer_radius: f64, inner_radius: f64, length: f64) -> Result<Solid, BuildError> {
     if !(outer_radius.is_finite() && outer_radius > 0.0) {
         return Err(BuildError::BadDimension {
@@ -51,18 +52,26 @@ pub fn tube(outer_radius: f64, inner_radius: f64, length: f64) -> Result<Solid, 
             requirement: "finite and > 0",
         });
     }
-    if !(inner_radius > 0.0 && inner_radius < outer_radius) {
-        return Err(BuildError::BadDimension {
-            what: "inner radius",
-            value: inner_radius,
-            requirement: "> 0 and below the outer radius",
-        });
-    }
     if !(length.is_finite() && length > 0.0) {
         return Err(BuildError::BadDimension {
             what: "length",
             value: length,
             requirement: "finite and > 0",
+        });
+    }
+    let smallest = MIN_RELATIVE_FEATURE * outer_radius.max(length);
+    if !(inner_radius >= smallest && outer_radius - inner_radius >= smallest) {
+        return Err(BuildError::BadDimension {
+            what: "inner radius",
+            value: inner_radius,
+            requirement: "at least 1e-6 of the size, and below the outer radius by as much",
+        });
+    }
+    if length < smallest {
+        return Err(BuildError::BadDimension {
+            what: "length",
+            value: length,
+            requirement: "at least 1e-6 of the outer radius",
         });
     }
     let axis = Placement::new(DVec3::ZERO, DVec3::Z, DVec3::X)?;

@@ -537,11 +537,18 @@ fn has_crossing(a: &[(DVec2, DVec2)], b: &[(DVec2, DVec2)], same: bool) -> bool 
     false
 }
 
-/// Whether segments pq and rs cross at a point interior to both.
+/// Whether segments pq and rs cross. Each end point is put on one side of the other segment's
+/// line (on the line counts as the negative side), so that a crossing through a polyline vertex
+/// is counted once, by exactly one of the two segments meeting there, whatever the rounding.
+/// Segments sharing an end point (neighbours in a loop) do not cross.
 fn proper_crossing(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
+    if p == r || p == s || q == r || q == s {
+        return false;
+    }
+    let side = |d: f64| d > 0.0;
     let d1 = (q - p).perp_dot(r - p);
     let d2 = (q - p).perp_dot(s - p);
     let d3 = (s - r).perp_dot(p - r);
     let d4 = (s - r).perp_dot(q - r);
-    d1 * d2 < 0.0 && d3 * d4 < 0.0
+    side(d1) != side(d2) && side(d3) != side(d4)
 }
