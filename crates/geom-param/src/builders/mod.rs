@@ -4,6 +4,7 @@
 
 pub(crate) mod build_error;
 pub(crate) mod extrusion;
+pub(crate) mod loft;
 pub(crate) mod rounded_box;
 pub(crate) mod sew;
 pub(crate) mod tube;
