@@ -323,3 +323,58 @@ fn ball_against_a_free_form_nurbs_loft() {
         );
     }
 }
+
+/// A block [0, 20]² x [0, 10] extruded from a square.
+fn block_solid() -> Solid {
+    let p = |x: f64, y: f64| DVec2::new(x, y);
+    let corners = [p(0.0, 0.0), p(20.0, 0.0), p(20.0, 20.0), p(0.0, 20.0)];
+    let outer = (0..4)
+        .map(|k| PlanarSegment::Line {
+            from: corners[k],
+            to: corners[(k + 1) % 4],
+        })
+        .collect();
+    extrude(
+        &PlanarProfile {
+            outer,
+            holes: Vec::new(),
+        },
+        0.0,
+        10.0,
+    )
+    .expect("block")
+}
+
+#[test]
+fn ball_at_the_edges_and_corner_of_an_extruded_block() {
+    // Regression: the extrusion's caps were planes over [-20, 20]², whose sides the square's
+    // edges x = 20 and y = 20 lay on. Stage 3 cuts steps at a domain's side, so from a seed on
+    // the top cap it stayed on the cap at x = 20 (128 steps, distance -0.05) and every ball
+    // below was reported separated.
+    let gap = 0.05;
+    let corner = DVec3::new(20.0, 20.0, 10.0);
+    let mut balls: Vec<(f64, DVec3)> = [
+        DVec3::ONE,
+        DVec3::new(1.0, 2.0, 3.0),
+        DVec3::new(3.0, 1.0, 1.0),
+        DVec3::new(1.0, 1.0, 3.0),
+    ]
+    .iter()
+    .map(|w| (3.0, corner + (3.0 + gap) * w.normalize()))
+    .collect();
+    // The top edge along x = 20 and the vertical edge at (20, 20).
+    let diagonal = DVec3::new(1.0, 0.0, 1.0).normalize();
+    balls.push((3.0, DVec3::new(20.0, 10.0, 10.0) + (3.0 + gap) * diagonal));
+    let across = DVec3::new(1.0, 1.0, 0.0).normalize();
+    balls.push((3.0, DVec3::new(20.0, 20.0, 5.0) + (3.0 + gap) * across));
+    let reports = queries(model("block", block_solid()), &balls);
+    for (k, report) in reports.iter().enumerate() {
+        let what = format!("block ball {k}");
+        let loc = one_contact(report, gap, &what);
+        let expected = match k {
+            0..4 => matches!(loc, FeatureLocation::Vertex { .. }),
+            _ => matches!(loc, FeatureLocation::Edge { .. }),
+        };
+        assert!(expected, "{what}: {loc:?}");
+    }
+}

@@ -12,6 +12,7 @@
 //! left of every loop. The top cap's (u, v) are (x, y), the bottom cap's (x, −y) (its normal is
 //! −z).
 
+use crate::builders::CAP_DOMAIN_FACTOR;
 use crate::builders::build_error::BuildError;
 use crate::curves::circle_curve::CircleCurve;
 use crate::curves::curve::{Curve, ParamRange};
@@ -335,7 +336,7 @@ fn nurbs_geometry(
 /// of the size.
 ///
 /// Faces: one side face per segment (outer loop first, then each hole, in order), then the
-/// bottom cap, then the top cap. Edges per segment: its bottom, its top, and the vertical edge
+/// bottom cap, then the top cap (planes over [−2s, 2s]², s the size, trimmed by the loops). Edges per segment: its bottom, its top, and the vertical edge
 /// at its start; two vertices per profile vertex (bottom, top).
 ///
 /// # Errors
@@ -505,7 +506,8 @@ pub fn extrude(profile: &PlanarProfile, z0: f64, z1: f64) -> Result<Solid, Build
             vertices[v.0 as usize].edges.push(EdgeId(id(e)));
         }
     }
-    let cap_domain = [range(-size, size), range(-size, size)];
+    let half = CAP_DOMAIN_FACTOR * size;
+    let cap_domain = [range(-half, half), range(-half, half)];
     let bottom = Plane::new(
         Placement::new(DVec3::new(0.0, 0.0, z0), DVec3::NEG_Z, DVec3::X)?,
         cap_domain,

@@ -20,6 +20,7 @@
 //! the horizontal section of the solid at height z is the row at v = z, and the solid's volume
 //! is ∫ area(row(z)) dz.
 
+use crate::builders::CAP_DOMAIN_FACTOR;
 use crate::builders::build_error::BuildError;
 use crate::curves::curve::ParamRange;
 use crate::curves::nurbs_curve::NurbsCurve;
@@ -144,7 +145,8 @@ fn check_sections(sections: &[EllipseSection], tolerance: f64) -> Result<(), Bui
 /// rational quadratic unit circle (A7.1: the angle at multiples of π/2, not between), running
 /// counter-clockwise seen from +z, so ∂S/∂u × ∂S/∂v points out; v in [z_first, z_last] (mm),
 /// degree min(3, n − 1), knots by averaging the section heights. Face 1 is the bottom cap
-/// (normal −z, (u, v) = (x, −y)), face 2 the top cap (normal +z, (u, v) = (x, y)). Edge 0 is
+/// (normal −z, (u, v) = (x, −y)), face 2 the top cap (normal +z, (u, v) = (x, y)), planes over
+/// [−2m, 2m]² (m the largest |x| or |y| of the net) trimmed by the end ellipses. Edge 0 is
 /// the bottom ellipse, edge 1 the top one: [`NurbsCurve`]s with the side face's u knots and
 /// weights, so an edge's t is the side face's u; on the caps their p-curves are the same rows
 /// as [`NurbsCurve2`]s (mirrored in y on the bottom cap). No vertices.
@@ -255,7 +257,7 @@ pub fn loft(sections: &[EllipseSection]) -> Result<Solid, BuildError> {
         .flatten()
         .map(|p| p.truncate().abs().max_element())
         .fold(0.0, f64::max)
-        * (1.0 + 1e-9);
+        * CAP_DOMAIN_FACTOR;
     let cap_domain = [range(-half, half), range(-half, half)];
     // Bottom cap: normal −z, x along +x, so y = −y: (u, v) = (x, −y), and the ellipse, which
     // runs counter-clockwise in xy, runs clockwise there; the loop takes it backwards.

@@ -8,3 +8,10 @@ pub(crate) mod loft;
 pub(crate) mod rounded_box;
 pub(crate) mod sew;
 pub(crate) mod tube;
+
+/// How far a trimmed cap plane's parameter domain reaches, as a multiple of the largest
+/// coordinate of its trim: well beyond the trim on every side, so that no trim loop touches a
+/// side of its surface's domain. (Stage 3 cuts a Newton step where a parameter reaches its
+/// domain's side; a point held there on the trim could not move on to the edge or vertex, and
+/// a ball over the corner of an extruded block was missed.)
+pub(crate) const CAP_DOMAIN_FACTOR: f64 = 2.0;
