@@ -302,7 +302,7 @@ pub fn loft(sections: &[EllipseSection]) -> Result<Solid, BuildError> {
                     Boundary::Edge(EdgeId(1)),
                 ],
                 trim: None,
-                convexity: FaceConvexity::Concave,
+                convexity: FaceConvexity::Flat,
             },
             cap(bottom, bottom_trim),
             cap(top, top_trim),
