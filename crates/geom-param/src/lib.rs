@@ -41,6 +41,7 @@ mod topology;
 
 pub use builders::build_error::BuildError;
 pub use builders::extrusion::{PlanarProfile, PlanarSegment, extrude};
+pub use builders::loft::{EllipseSection, loft};
 pub use builders::rounded_box::rounded_box;
 pub use builders::sew::sew_rectangles;
 pub use builders::tube::tube;

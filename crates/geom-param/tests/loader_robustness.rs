@@ -4,7 +4,7 @@
 //! finite mesh positions, normals and chordal error. Deterministic: a seeded SplitMix64.
 #![cfg(feature = "json")]
 
-use geom_param::{ObjectFile, MeshOptions, ObjectDescription, ObjectModel, Profile, SegmentSpec};
+use geom_param::{MeshOptions, ObjectDescription, ObjectFile, ObjectModel, Profile, SegmentSpec};
 use serde_json::Value;
 use std::path::Path;
 use std::time::{Duration, Instant};

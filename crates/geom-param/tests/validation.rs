@@ -45,7 +45,10 @@ fn circle(center: DVec2, radius: f64, ccw: bool) -> Vec<PlanarSegment> {
 fn topology_error(result: Result<Solid, BuildError>) -> TopologyError {
     match result {
         Err(BuildError::Topology(e)) => e,
-        other => panic!("expected a topology error, got {:?}", other.map(|s| s.faces.len())),
+        other => panic!(
+            "expected a topology error, got {:?}",
+            other.map(|s| s.faces.len())
+        ),
     }
 }
 
@@ -63,11 +66,15 @@ fn builders_make_valid_solids() {
 fn a_free_edge_is_an_open_shell() {
     let mut solid = valid_tube();
     // The top cap forgets its hole: the inner top circle then lies on one face only.
-    solid.faces[3].trim.as_mut().expect("trimmed").loops.truncate(1);
+    solid.faces[3]
+        .trim
+        .as_mut()
+        .expect("trimmed")
+        .loops
+        .truncate(1);
     assert!(matches!(
         validate(&solid),
-        Err(TopologyError::EdgeUseCount { count: 1, .. })
-            | Err(TopologyError::BadReference { .. })
+        Err(TopologyError::EdgeUseCount { count: 1, .. }) | Err(TopologyError::BadReference { .. })
     ));
 }
 
@@ -88,7 +95,10 @@ fn faces_that_run_an_edge_the_same_way_are_inconsistently_oriented() {
     entry.reversed = !entry.reversed;
     assert!(matches!(
         validate(&solid),
-        Err(TopologyError::InconsistentOrientation { edge: EdgeId(1), .. })
+        Err(TopologyError::InconsistentOrientation {
+            edge: EdgeId(1),
+            ..
+        })
     ));
 }
 
@@ -172,7 +182,10 @@ fn a_hole_crossing_the_outer_loop_is_refused() {
         0.0,
         1.0,
     ));
-    assert!(matches!(error, TopologyError::LoopsCross { .. }), "{error:?}");
+    assert!(
+        matches!(error, TopologyError::LoopsCross { .. }),
+        "{error:?}"
+    );
 }
 
 #[test]
@@ -186,7 +199,10 @@ fn a_hole_outside_or_running_the_wrong_way_is_refused() {
         1.0,
     ));
     assert!(
-        matches!(outside, TopologyError::WrongLoopOrientation { loop_index: 1, .. }),
+        matches!(
+            outside,
+            TopologyError::WrongLoopOrientation { loop_index: 1, .. }
+        ),
         "{outside:?}"
     );
     let counter_clockwise = topology_error(extrude(

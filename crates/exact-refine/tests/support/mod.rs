@@ -1,12 +1,16 @@
-//! Shared test scaffolding: closed-form solids built from profiles, seeds, a seeded PRNG and
-//! the checks every converged contact must pass.
+//! Shared test scaffolding: closed-form solids built from profiles, general solids with NURBS
+//! and trimmed analytic faces (sewn or built by geom-param's builders), seeds, a seeded PRNG
+//! and the checks every converged contact must pass.
 #![allow(dead_code)] // each test binary uses a different subset
 
 use exact_refine::{NewtonRefiner, RefineStatus, RefinedContact, Refiner};
 use geom_param::{
-    ComponentId, DPose3, DQuat, DVec3, FeatureLocation, MeshOptions, ObjectModel, Profile, Seed,
-    SeedPoint, SegmentSpec, Solid,
+    ComponentId, DPose3, DQuat, DVec2, DVec3, FeatureLocation, MeshOptions, NurbsCurve,
+    NurbsCurve2, NurbsSurface, ObjectModel, Placement, PlanarProfile, PlanarSegment, Profile, Seed,
+    SeedPoint, SegmentSpec, Solid, Surface, extrude, sew_rectangles,
 };
+use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI, TAU};
+use std::sync::Arc;
 
 /// Builds a solid from profile segments (the mesh is coarse: only the exact solid is used).
 pub fn solid(specs: &[SegmentSpec]) -> Solid {
@@ -111,6 +115,196 @@ pub fn socket(r: f64, w: f64, t: f64) -> Solid {
             ccw: false,
         },
     ])
+}
+
+// ---------------------------------------------------------------------------------------------
+// General solids: NURBS faces sewn into solids, builders' solids with trimmed faces.
+
+/// The xz half-plane as a placement: x = +x, y = +z (axis −y), for meridians revolved about z.
+fn meridian_plane(centre: DVec3) -> Placement {
+    Placement::new(centre, DVec3::NEG_Y, DVec3::X).expect("placement")
+}
+
+/// One NURBS face revolved about z and sewn into a solid (its poles become vertices).
+fn sewn(surface: NurbsSurface) -> Solid {
+    let size = (0..surface.count()[0])
+        .flat_map(|i| (0..surface.count()[1]).map(move |j| (i, j)))
+        .map(|(i, j)| surface.control_point(i, j).abs().max_element())
+        .fold(0.0, f64::max);
+    sew_rectangles(vec![Arc::new(surface)], 1e-9 * size).expect("sewn NURBS solid")
+}
+
+/// The NURBS sphere of radius r about the origin (The NURBS Book A8.1): the rational quadratic
+/// semicircle from the south pole through +x to the north pole, revolved about z. Face 0:
+/// u in [0, 2π] periodic (the angle about z at multiples of π/2), v in [−π/2, π/2] (the
+/// latitude at −π/2, 0, π/2, not between); vertices at the poles.
+pub fn nurbs_sphere(r: f64) -> Solid {
+    let meridian =
+        NurbsCurve::circle_arc(&meridian_plane(DVec3::ZERO), r, -FRAC_PI_2, PI).expect("arc");
+    sewn(NurbsSurface::revolution(&meridian, DVec3::ZERO, DVec3::Z, TAU).expect("revolved"))
+}
+
+/// The same sphere with the meridian's weights `weights` (5 of them; knots [0, 0, 0, 1, 1, 2,
+/// 2, 2], control points (0, −r), (r, −r), (r, 0), (r, r), (0, r) in the xz plane). The
+/// weights (1, c √½, c², ...) with any c > 0 reparametrise a quarter arc without changing it
+/// (The NURBS Book eq. 6.4), and scaling all weights changes nothing, so many weight sets
+/// give the exact sphere. Face 0: u as [`nurbs_sphere`], v in [0, 2] from south to north.
+pub fn nurbs_sphere_weighted(r: f64, weights: [f64; 5]) -> Solid {
+    let points = [(0.0, -r), (r, -r), (r, 0.0), (r, r), (0.0, r)]
+        .map(|(x, z)| DVec3::new(x, 0.0, z))
+        .to_vec();
+    let meridian = NurbsCurve::new(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 2.0],
+        points,
+        weights.to_vec(),
+        false,
+    )
+    .expect("meridian");
+    sewn(NurbsSurface::revolution(&meridian, DVec3::ZERO, DVec3::Z, TAU).expect("revolved"))
+}
+
+/// The meridian weights of the exact semicircle: 1 at the joints, √½ at the corners.
+pub const SEMICIRCLE_WEIGHTS: [f64; 5] = [1.0, FRAC_1_SQRT_2, 1.0, FRAC_1_SQRT_2, 1.0];
+
+/// The NURBS torus: the rational quadratic circle of radius `a` about (rc, 0, 0) in the xz
+/// plane (from its outer equator, counter-clockwise towards +z), revolved about z. Face 0,
+/// periodic in u (about z) and v (around the tube, the angle from the outer equator at
+/// multiples of π/2); no edges or vertices.
+pub fn nurbs_torus(rc: f64, a: f64) -> Solid {
+    let tube = NurbsCurve::circle_arc(&meridian_plane(DVec3::new(rc, 0.0, 0.0)), a, 0.0, TAU)
+        .expect("circle");
+    sewn(NurbsSurface::revolution(&tube, DVec3::ZERO, DVec3::Z, TAU).expect("revolved"))
+}
+
+/// The NURBS cone of base radius r at z = 0 with apex (0, 0, h): a disk (the segment from the
+/// centre to (r, 0, 0), revolved) and the mantle (from (r, 0, 0) to the apex, revolved), both
+/// degree 1 along the meridian; the apex and the disk's centre are collapsed rows (poles).
+/// Face 0 the disk, face 1 the mantle (v from the rim, 0, to the apex, 1).
+pub fn nurbs_cone(r: f64, h: f64) -> Solid {
+    let line = |a: DVec3, b: DVec3| {
+        NurbsCurve::new(
+            1,
+            vec![0.0, 0.0, 1.0, 1.0],
+            vec![a, b],
+            vec![1.0, 1.0],
+            false,
+        )
+        .expect("line")
+    };
+    let revolve = |c: NurbsCurve| -> Arc<dyn Surface> {
+        Arc::new(NurbsSurface::revolution(&c, DVec3::ZERO, DVec3::Z, TAU).expect("revolved"))
+    };
+    let rim = DVec3::new(r, 0.0, 0.0);
+    sew_rectangles(
+        vec![
+            revolve(line(DVec3::ZERO, rim)),
+            revolve(line(rim, DVec3::new(0.0, 0.0, h))),
+        ],
+        1e-9 * r.max(h),
+    )
+    .expect("sewn cone")
+}
+
+/// The v at which face `face`'s meridian (u fixed) reaches latitude `latitude` (rad, about the
+/// origin), by bisection: for the revolved NURBS spheres, whose latitude grows with v.
+pub fn v_at_latitude(solid: &Solid, face: u32, u: f64, latitude: f64) -> f64 {
+    let surface = &solid.faces[face as usize].surface;
+    let range = surface.domain()[1];
+    let lat = |v: f64| {
+        let p = surface.eval(u, v).point;
+        p.z.atan2(p.truncate().length())
+    };
+    let (mut lo, mut hi) = (range.min, range.max);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if lat(mid) < latitude {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// A square block [0, 20]² x [0, 10] extruded from four lines: faces 0-3 the sides (face k on
+/// the segment from corner k), 4 the bottom cap, 5 the top cap (trimmed planes); per segment k
+/// edges 3k (bottom), 3k + 1 (top), 3k + 2 (vertical, at corner k); vertices 2k (bottom) and
+/// 2k + 1 (top) at corner k. Corners: (0, 0), (20, 0), (20, 20), (0, 20).
+pub fn block() -> Solid {
+    let corners =
+        [(0.0, 0.0), (20.0, 0.0), (20.0, 20.0), (0.0, 20.0)].map(|(x, y)| DVec2::new(x, y));
+    let outer = (0..4)
+        .map(|k| PlanarSegment::Line {
+            from: corners[k],
+            to: corners[(k + 1) % 4],
+        })
+        .collect();
+    extrude(
+        &PlanarProfile {
+            outer,
+            holes: Vec::new(),
+        },
+        0.0,
+        10.0,
+    )
+    .expect("block")
+}
+
+/// The block [0, 20]² x [0, 10] with its side x = 20 pushed out into a roof: a quadratic NURBS
+/// segment from (20, 0) through the control points (22.5, 5), (25, 10) [a knot of multiplicity
+/// 2 = the degree: a crease], (22.5, 15) to (20, 20). Each piece is a straight segment
+/// parametrised uniformly (its middle control point is its midpoint), so face 1 is two planes
+/// meeting at a convex crease along the vertical line x = 25, y = 10, at u = 1 inside the
+/// face. Faces: 0 (y = 0), 1 (the roof), 2, 3, caps 4 and 5.
+pub fn creased_block() -> Solid {
+    let p = |x: f64, y: f64| DVec2::new(x, y);
+    let roof = NurbsCurve2::new(
+        2,
+        vec![0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 2.0],
+        vec![
+            p(20.0, 0.0),
+            p(22.5, 5.0),
+            p(25.0, 10.0),
+            p(22.5, 15.0),
+            p(20.0, 20.0),
+        ],
+        vec![1.0; 5],
+        false,
+    )
+    .expect("roof");
+    extrude(
+        &PlanarProfile {
+            outer: vec![
+                PlanarSegment::Line {
+                    from: p(0.0, 0.0),
+                    to: p(20.0, 0.0),
+                },
+                PlanarSegment::Nurbs(roof),
+                PlanarSegment::Line {
+                    from: p(20.0, 20.0),
+                    to: p(0.0, 20.0),
+                },
+                PlanarSegment::Line {
+                    from: p(0.0, 20.0),
+                    to: p(0.0, 0.0),
+                },
+            ],
+            holes: Vec::new(),
+        },
+        0.0,
+        10.0,
+    )
+    .expect("creased block")
+}
+
+/// The parameters (u, v) on a [`sphere`] (face 0) of the point in direction `w` from its
+/// centre.
+pub fn sphere_params(w: DVec3) -> (f64, f64) {
+    (
+        w.y.atan2(w.x).rem_euclid(2.0 * PI),
+        (w.z.clamp(-1.0, 1.0).asin() + FRAC_PI_2) / PI,
+    )
 }
 
 /// A seed point at `location` on `solid`, with its point offset by `offset` (object frame).

@@ -1,19 +1,27 @@
-//! Extrusion of a closed planar profile (lines and circular arcs in the xy plane, with holes)
-//! between two planes z = z₀ and z = z₁: one side face per segment, two trimmed caps.
+//! Extrusion of a closed planar profile (lines, circular arcs and NURBS curves in the xy
+//! plane, with holes) between two planes z = z₀ and z = z₁: one side face per segment, two
+//! trimmed caps.
 //!
 //! Every side face is parametrised alike: u runs along its segment in the loop's direction
-//! (arc length for a line, the angle for an arc), v = z − z₀. So its v_min side is the bottom
-//! edge, v_max the top edge, u_min the vertical edge at the segment's start and u_max the one
-//! at its end. A line's side is a plane; an arc turning counter-clockwise is a cylinder, one
-//! turning clockwise (a concave fillet, a hole) a reversed cylinder. The top cap's (u, v) are
-//! (x, y), the bottom cap's (x, −y) (its normal is −z).
+//! (arc length for a line, the angle for an arc, the curve's own parameter for a NURBS curve),
+//! v = z − z₀. So its v_min side is the bottom edge, v_max the top edge, u_min the vertical edge
+//! at the segment's start and u_max the one at its end. A line's side is a plane; an arc turning
+//! counter-clockwise is a cylinder, one turning clockwise (a concave fillet, a hole) a reversed
+//! cylinder; a NURBS curve's side is its [`LinearExtrusionSurface`] along +z, whose normal
+//! C'(u) × z is the right of the direction of travel: outward, since the material is on the
+//! left of every loop. The top cap's (u, v) are (x, y), the bottom cap's (x, −y) (its normal is
+//! −z).
 
+use crate::builders::CAP_DOMAIN_FACTOR;
 use crate::builders::build_error::BuildError;
 use crate::curves::circle_curve::CircleCurve;
 use crate::curves::curve::{Curve, ParamRange};
 use crate::curves::curve2::{Circle2, Curve2, Line2};
 use crate::curves::line_curve::LineCurve;
+use crate::curves::nurbs_curve::NurbsCurve;
+use crate::curves::nurbs_curve2::NurbsCurve2;
 use crate::surfaces::cylinder_surface::CylinderSurface;
+use crate::surfaces::linear_extrusion_surface::LinearExtrusionSurface;
 use crate::surfaces::placement::Placement;
 use crate::surfaces::plane::Plane;
 use crate::surfaces::reversed_surface::ReversedSurface;
@@ -28,7 +36,7 @@ use glam::{DVec2, DVec3};
 use std::f64::consts::TAU;
 
 /// One segment of a planar profile, in the xy plane (mm).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 #[cfg_attr(
     feature = "json",
     derive(serde::Serialize, serde::Deserialize),
@@ -55,12 +63,34 @@ pub enum PlanarSegment {
         /// Direction of travel.
         ccw: bool,
     },
+    /// A rational B-spline curve in the xy plane, run from its parameter's start to its end
+    /// (a spline, a conic, a polyline with creases: interior knots of multiplicity = degree).
+    /// A closed (periodic) curve alone makes a whole loop. Its derivative must not vanish
+    /// (the side face would have no normal there). JSON: `{"nurbs": {"degree": 2, "knots":
+    /// [...], "points": [[x, y], ...], "weights": [...], "periodic": false}}`, weights
+    /// optional (1).
+    Nurbs(#[cfg_attr(feature = "json", serde(with = "crate::io::nurbs_curve2_json"))] NurbsCurve2),
 }
 
 impl PlanarSegment {
     fn start(&self) -> DVec2 {
-        match *self {
-            Self::Line { from, .. } | Self::Arc { from, .. } => from,
+        match self {
+            Self::Line { from, .. } | Self::Arc { from, .. } => *from,
+            Self::Nurbs(curve) => curve.eval(curve.param_range().min).point,
+        }
+    }
+
+    /// The largest absolute coordinate of a box that holds the segment (mm).
+    fn extent(&self) -> f64 {
+        match self {
+            Self::Line { from, to } => from.abs().max(to.abs()).max_element(),
+            Self::Arc { center, from, .. } => center.abs().max_element() + center.distance(*from),
+            // The curve lies in its control points' convex hull.
+            Self::Nurbs(curve) => curve
+                .control_points()
+                .iter()
+                .map(|p| p.abs().max_element())
+                .fold(0.0, f64::max),
         }
     }
 }
@@ -89,6 +119,12 @@ fn range(min: f64, max: f64) -> ParamRange {
     }
 }
 
+/// Samples per knot span at which a NURBS segment's speed is checked.
+const SPEED_SAMPLES_PER_SPAN: usize = 16;
+/// Speed |C'(t)| below which a NURBS segment counts as stopping (relative to its control
+/// polygon's extent per unit of its parameter span).
+const MIN_RELATIVE_SPEED: f64 = 1e-9;
+
 /// A segment's side face, bottom edge curve and p-curves on the top and bottom caps.
 struct SegmentGeometry {
     side: Box<dyn Surface>,
@@ -108,6 +144,7 @@ fn segment_geometry(
 ) -> Result<SegmentGeometry, BuildError> {
     let lift = |p: DVec2, z: f64| DVec3::new(p.x, p.y, z);
     match *segment {
+        PlanarSegment::Nurbs(ref curve) => nurbs_geometry(curve, z0, height, tolerance),
         PlanarSegment::Line { from, to } => {
             let length = from.distance(to);
             if length.is_nan() || length <= tolerance {
@@ -219,16 +256,93 @@ fn segment_geometry(
     }
 }
 
+/// The side face, edges and p-curves of a NURBS segment: the side is the extrusion of the
+/// curve lifted to z₀ (u = the curve's t, v = z − z₀), the bottom and top edges are the curve
+/// lifted to z₀ and z₁ (edge t = u), the p-curves the curve itself (top cap) and its mirror
+/// image in y (bottom cap), with the same knots and weights.
+fn nurbs_geometry(
+    curve: &NurbsCurve2,
+    z0: f64,
+    height: f64,
+    tolerance: f64,
+) -> Result<SegmentGeometry, BuildError> {
+    let points = curve.control_points();
+    let extent = points
+        .iter()
+        .map(|p| p.distance(points[0]))
+        .fold(0.0, f64::max);
+    if extent <= tolerance {
+        return Err(BuildError::BadDimension {
+            what: "NURBS segment extent",
+            value: extent,
+            requirement: "longer than the model tolerance",
+        });
+    }
+    let domain = curve.param_range();
+    let slowest = curve
+        .basis()
+        .knots()
+        .windows(2)
+        .filter(|w| w[1] > w[0])
+        .flat_map(|w| {
+            (0..=SPEED_SAMPLES_PER_SPAN)
+                .map(move |k| w[0] + (w[1] - w[0]) * k as f64 / SPEED_SAMPLES_PER_SPAN as f64)
+        })
+        .filter(|t| *t >= domain.min && *t <= domain.max)
+        .map(|t| curve.eval(t).d1.length())
+        .fold(f64::INFINITY, f64::min);
+    if slowest.is_nan() || slowest <= MIN_RELATIVE_SPEED * extent / domain.span() {
+        return Err(BuildError::BadDimension {
+            what: "speed of a NURBS segment",
+            value: slowest,
+            requirement: "non-zero along the curve (the side face needs a normal)",
+        });
+    }
+    let degree = curve.basis().degree();
+    let knots = curve.basis().knots().to_vec();
+    let weights = curve.weights().to_vec();
+    let periodic = curve.is_periodic();
+    let lifted = |z: f64| {
+        NurbsCurve::new(
+            degree,
+            knots.clone(),
+            points.iter().map(|p| DVec3::new(p.x, p.y, z)).collect(),
+            weights.clone(),
+            periodic,
+        )
+    };
+    let mirrored = NurbsCurve2::new(
+        degree,
+        knots.clone(),
+        points.iter().map(|p| DVec2::new(p.x, -p.y)).collect(),
+        weights.clone(),
+        periodic,
+    )?;
+    Ok(SegmentGeometry {
+        side: Box::new(LinearExtrusionSurface::new(
+            lifted(z0)?,
+            DVec3::Z,
+            range(0.0, height),
+        )?),
+        bottom: Box::new(lifted(z0)?),
+        top: Box::new(lifted(z0 + height)?),
+        top_pcurve: Box::new(curve.clone()),
+        bottom_pcurve: Box::new(mirrored),
+        periodic,
+    })
+}
+
 /// The solid swept by `profile` from z = `z0` to z = `z1` (mm). The model tolerance is 1e-9
 /// of the size.
 ///
 /// Faces: one side face per segment (outer loop first, then each hole, in order), then the
-/// bottom cap, then the top cap. Edges per segment: its bottom, its top, and the vertical edge
+/// bottom cap, then the top cap (planes over [−2s, 2s]², s the size, trimmed by the loops). Edges per segment: its bottom, its top, and the vertical edge
 /// at its start; two vertices per profile vertex (bottom, top).
 ///
 /// # Errors
 /// [`BuildError::BadDimension`] for z1 <= z0, a segment shorter than the tolerance, an arc
-/// whose ends are not on one circle; [`BuildError::Geometry`] for non-finite input;
+/// whose ends are not on one circle, a NURBS segment whose speed vanishes at one of 16
+/// samples per knot span; [`BuildError::Geometry`] for non-finite input;
 /// [`BuildError::Topology`] for a profile that does not close, crosses itself, or runs the
 /// wrong way (outer loop clockwise, a hole counter-clockwise or outside).
 pub fn extrude(profile: &PlanarProfile, z0: f64, z1: f64) -> Result<Solid, BuildError> {
@@ -245,7 +359,7 @@ pub fn extrude(profile: &PlanarProfile, z0: f64, z1: f64) -> Result<Solid, Build
         .collect();
     let size = loops
         .iter()
-        .flat_map(|l| l.iter().map(|s| s.start().abs().max_element()))
+        .flat_map(|l| l.iter().map(PlanarSegment::extent))
         .fold(z0.abs().max(z1.abs()), f64::max);
     if !size.is_finite() {
         return Err(BuildError::BadDimension {
@@ -392,7 +506,8 @@ pub fn extrude(profile: &PlanarProfile, z0: f64, z1: f64) -> Result<Solid, Build
             vertices[v.0 as usize].edges.push(EdgeId(id(e)));
         }
     }
-    let cap_domain = [range(-size, size), range(-size, size)];
+    let half = CAP_DOMAIN_FACTOR * size;
+    let cap_domain = [range(-half, half), range(-half, half)];
     let bottom = Plane::new(
         Placement::new(DVec3::new(0.0, 0.0, z0), DVec3::NEG_Z, DVec3::X)?,
         cap_domain,

@@ -1,8 +1,8 @@
 //! A box with every edge filleted: 6 planes, 12 quarter cylinders and 8 sphere octants, all
 //! tangent-continuous, sewn along their sides.
 
-use crate::builders::build_error::BuildError;
 use crate::builders::MIN_RELATIVE_FEATURE;
+use crate::builders::build_error::BuildError;
 use crate::builders::sew::sew_rectangles;
 use crate::curves::curve::ParamRange;
 use crate::surfaces::cylinder_surface::CylinderSurface;

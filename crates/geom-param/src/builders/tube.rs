@@ -2,6 +2,7 @@
 //! its outward normal points at the axis) and two annular caps, trimmed planes whose inner
 //! loop is the hole.
 
+use crate::builders::CAP_DOMAIN_FACTOR;
 use crate::builders::MIN_RELATIVE_FEATURE;
 use crate::builders::build_error::BuildError;
 use crate::curves::circle_curve::CircleCurve;
@@ -38,7 +39,7 @@ fn range(min: f64, max: f64) -> ParamRange {
 ///
 /// Faces: 0 the outer cylinder, 1 the inner (reversed) cylinder, 2 the bottom cap (z = 0),
 /// 3 the top cap; edges: 0 and 1 the outer circles at the bottom and top, 2 and 3 the inner
-/// ones. The caps are trimmed planes with one hole each. The model tolerance is 1e-9 of the
+/// ones. The caps are planes over [−2 r_outer, 2 r_outer]² trimmed by two circles each. The model tolerance is 1e-9 of the
 /// size.
 ///
 /// # Errors
@@ -120,7 +121,10 @@ pub fn tube(outer_radius: f64, inner_radius: f64, length: f64) -> Result<Solid, 
     let inner = ReversedSurface {
         inner: CylinderSurface::new(axis, inner_radius, [TURN, range(0.0, length)])?,
     };
-    let half = range(-outer_radius, outer_radius);
+    let half = range(
+        -CAP_DOMAIN_FACTOR * outer_radius,
+        CAP_DOMAIN_FACTOR * outer_radius,
+    );
     // Bottom cap: normal −z, frame x = +x so y = −y: (u, v) = (x, −y), circles run clockwise.
     let bottom = Plane::new(
         Placement::new(DVec3::ZERO, DVec3::NEG_Z, DVec3::X)?,

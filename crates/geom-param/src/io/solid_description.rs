@@ -11,11 +11,16 @@
 //!                  "z": [0, 20] } }
 //! ```
 //!
-//! The other builders: `{"rounded_box": {"half_extents": [20, 15, 10], "radius": 3}}` and
-//! `{"tube": {"outer_radius": 12, "inner_radius": 8, "length": 30}}`.
+//! The other builders: `{"rounded_box": {"half_extents": [20, 15, 10], "radius": 3}}`,
+//! `{"tube": {"outer_radius": 12, "inner_radius": 8, "length": 30}}` and
+//! `{"loft": {"sections": [{"center": [0, 0], "semi_axes": [13, 9], "rotation": 0, "z": 0},
+//! ...]}}`. A profile segment may also be a NURBS curve in the xy plane:
+//! `{"nurbs": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1], "points": [[0, 0], [5, 3], [10, 0]],
+//! "weights": [1, 0.7, 1]}}` (weights optional, `"periodic": true` for a closed curve).
 
 use crate::builders::build_error::BuildError;
 use crate::builders::extrusion::{PlanarProfile, extrude};
+use crate::builders::loft::{EllipseSection, loft};
 use crate::builders::rounded_box::rounded_box;
 use crate::builders::tube::tube;
 use crate::object_model::{MeshOptions, ModelError, ObjectModel};
@@ -52,6 +57,12 @@ pub enum SolidSpec {
         profile: PlanarProfile,
         /// The two planes.
         z: [f64; 2],
+    },
+    /// [`loft`]: a free-form solid whose one NURBS side face passes through horizontal
+    /// ellipses, closed by two planar caps.
+    Loft {
+        /// The cross-sections, bottom to top (strictly increasing z).
+        sections: Vec<EllipseSection>,
     },
 }
 
@@ -104,6 +115,7 @@ impl SolidSpec {
                 length,
             } => tube(*outer_radius, *inner_radius, *length),
             Self::Extrusion { profile, z } => extrude(profile, z[0], z[1]),
+            Self::Loft { sections } => loft(sections),
         }
     }
 }

@@ -1,7 +1,8 @@
 //! Rational B-spline (NURBS) numerics shared by curves and surfaces, after Piegl & Tiller,
 //! *The NURBS Book* (2nd ed., 1997): knot spans and basis derivatives (A2.1, A2.3), curve and
 //! surface derivatives on the homogeneous control net (A3.2, A3.6) with their rational
-//! quotients (A4.2, A4.4), and the exact circle and swept surfaces (A7.1, A8.1).
+//! quotients (A4.2, A4.4), the exact circle and swept surfaces (A7.1, A8.1), and global
+//! interpolation through points (A9.1).
 //!
 //! Evaluation allocates nothing: every scratch array is sized by [`MAX_DEGREE`].
 
@@ -10,6 +11,7 @@ pub(crate) mod circle_arc;
 pub(crate) mod control_point;
 pub(crate) mod curve_derivatives;
 pub(crate) mod extrusion;
+pub(crate) mod interpolation;
 pub(crate) mod rational_bspline_curve;
 pub(crate) mod revolution;
 pub(crate) mod surface_derivatives;
