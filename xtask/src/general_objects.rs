@@ -1,8 +1,11 @@
 //! The general (not revolved) fixture objects, made by geom-param's builders: a rounded box, a
-//! tube (faces with holes, a concave bore) and a filleted L-bracket with a hole.
+//! tube (faces with holes, a concave bore), a filleted L-bracket with a hole, and a free-form
+//! NURBS loft (a twisted, waisted solid whose side is one periodic NURBS patch).
 
 use crate::paper_objects::GENERATED_NOTE;
-use geom_param::{DVec2, DVec3, PlanarProfile, PlanarSegment, SolidDescription, SolidSpec};
+use geom_param::{
+    DVec2, DVec3, EllipseSection, PlanarProfile, PlanarSegment, SolidDescription, SolidSpec,
+};
 
 fn object(name: &str, spec: SolidSpec) -> SolidDescription {
     SolidDescription {
@@ -72,8 +75,31 @@ fn bracket() -> SolidDescription {
     )
 }
 
+/// Five ellipses 10 mm apart, shrinking to a waist at z = 20 and twisting by 100 degrees, their
+/// centres wandering off the axis: the side face is a saddle around the waist.
+fn loft() -> SolidDescription {
+    let section = |cx: f64, cy: f64, a: f64, b: f64, degrees: f64, z: f64| EllipseSection {
+        center: DVec2::new(cx, cy),
+        semi_axes: DVec2::new(a, b),
+        rotation: degrees.to_radians(),
+        z,
+    };
+    object(
+        "loft",
+        SolidSpec::Loft {
+            sections: vec![
+                section(0.0, 0.0, 13.0, 9.0, 0.0, 0.0),
+                section(1.0, 0.0, 9.0, 7.0, 25.0, 10.0),
+                section(1.5, 1.0, 7.0, 5.5, 50.0, 20.0),
+                section(0.5, 1.5, 9.0, 6.5, 75.0, 30.0),
+                section(-1.0, 1.0, 12.0, 8.0, 100.0, 40.0),
+            ],
+        },
+    )
+}
+
 /// Every general fixture object.
 #[must_use]
 pub fn general_objects() -> Vec<SolidDescription> {
-    vec![rounded_box(), tube(), bracket()]
+    vec![rounded_box(), tube(), bracket(), loft()]
 }

@@ -121,6 +121,18 @@ fn specs() -> Vec<SettleSpec> {
             tilt_axis: DVec3::NEG_Z,
             max_tilt: 1.2,
         },
+        // The NURBS loft lying on its side, lowered onto the tube's top rim (the tube standing
+        // on end): its saddle across the rim, then rolling onto the rim's far side.
+        SettleSpec {
+            pair: "loft-tube",
+            a: "tube",
+            b: "loft",
+            rotation: DQuat::from_rotation_y(FRAC_PI_2),
+            start: DVec3::new(-20.0, 2.0, 80.0),
+            approach: DVec3::NEG_Z,
+            tilt_axis: DVec3::Y,
+            max_tilt: 1.0,
+        },
     ]
 }
 

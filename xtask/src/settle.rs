@@ -247,7 +247,16 @@ impl<'p> Settler<'p> {
                     )
                 };
                 let found = bisect(0.0, step, |x| at(x).2, spec.second_gap);
-                return Ok(at(found).0);
+                let (settled, _, second) = at(found);
+                // A second minimum that appears inside the band (not coming down through
+                // delta2) is at the edge of existing there: no scene to keep.
+                if (second - spec.second_gap).abs() > 1e-6 {
+                    return Err(format!(
+                        "the second contact appears at {second} mm, not continuously at {} mm",
+                        spec.second_gap
+                    ));
+                }
+                return Ok(settled);
             }
             pose = next;
             pivot = next_pivot;

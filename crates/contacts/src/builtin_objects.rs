@@ -2,7 +2,7 @@
 //! so that scenes can name them.
 
 /// (name, object file text) of every built-in object.
-pub const BUILTIN_OBJECTS: [(&str, &str); 9] = [
+pub const BUILTIN_OBJECTS: [(&str, &str); 10] = [
     (
         "paperweight",
         include_str!("../../../fixtures/objects/paperweight.json"),
@@ -27,6 +27,7 @@ pub const BUILTIN_OBJECTS: [(&str, &str); 9] = [
         "bracket",
         include_str!("../../../fixtures/objects/bracket.json"),
     ),
+    ("loft", include_str!("../../../fixtures/objects/loft.json")),
 ];
 
 /// The object file text of a built-in object.

@@ -95,7 +95,7 @@ pub enum SceneError {
     },
     /// `object` names no built-in object and no readable file.
     #[error(
-        "{at}: unknown object `{name}` (built-in objects: paperweight, goblet, bowl, pencil, jar, vase, rounded-box, tube, bracket; or a path to an object file)"
+        "{at}: unknown object `{name}` (built-in objects: paperweight, goblet, bowl, pencil, jar, vase, rounded-box, tube, bracket, loft; or a path to an object file)"
     )]
     UnknownObject {
         /// Where.
