@@ -15,6 +15,20 @@ use std::path::{Path, PathBuf};
 /// Chordal tolerance of the meshes written as OBJ files (mm).
 pub const FIXTURE_OBJ_TOLERANCE: f64 = 0.1;
 
+/// Every fixture object: the six paper objects, then the general ones.
+#[must_use]
+pub fn fixture_objects() -> Vec<ObjectFile> {
+    paper_objects::paper_objects()
+        .into_iter()
+        .map(ObjectFile::Revolved)
+        .chain(
+            general_objects::general_objects()
+                .into_iter()
+                .map(ObjectFile::General),
+        )
+        .collect()
+}
+
 /// Every generated fixture file: path relative to the workspace root, and contents.
 ///
 /// # Errors
@@ -24,15 +38,7 @@ pub fn generate_fixtures() -> Result<Vec<(PathBuf, String)>, String> {
     let options = MeshOptions {
         chordal_tolerance: FIXTURE_OBJ_TOLERANCE,
     };
-    let objects: Vec<ObjectFile> = paper_objects::paper_objects()
-        .into_iter()
-        .map(ObjectFile::Revolved)
-        .chain(
-            general_objects::general_objects()
-                .into_iter()
-                .map(ObjectFile::General),
-        )
-        .collect();
+    let objects = fixture_objects();
     for description in &objects {
         let name = description.name().to_string();
         let model = description

@@ -11,7 +11,7 @@ use xtask::soak::table::{render, totals};
 
 const USAGE: &str = "usage: cargo xtask fixtures\n       \
 cargo xtask report [--quick] [--out DIR]\n       \
-cargo xtask soak N [--seed S] [--pairs a-b,c-d,...]\n       \
+cargo xtask soak N [--seed S] [--pairs a-b,c-d,...] [--general]\n       \
 cargo xtask soak --replay a-b:SEED";
 
 fn workspace_root() -> PathBuf {
@@ -63,11 +63,13 @@ fn soak(args: &[String]) -> Result<bool, String> {
         poses: 0,
         seed: 1,
         pairs: Vec::new(),
+        general: false,
     };
     let mut rest = args.iter();
     while let Some(arg) = rest.next() {
         let mut value = || rest.next().ok_or(format!("{arg} needs a value"));
         match arg.as_str() {
+            "--general" => config.general = true,
             "--seed" => config.seed = value()?.parse().map_err(|e| format!("bad seed: {e}"))?,
             "--pairs" => {
                 config.pairs = value()?

@@ -19,6 +19,9 @@ fn summary() -> &'static SoakSummary {
                 poses: POSES,
                 seed: SEED,
                 pairs: Vec::new(),
+                // FIXME(general solids): the CI soak covers the six paper objects; the general
+                // fixture objects run with `cargo xtask soak N --general` (docs/ROBUSTNESS.md).
+                general: false,
             },
             |_, _| {},
         )

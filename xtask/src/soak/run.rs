@@ -1,12 +1,14 @@
 //! The soak driver: poses for each ordered pair, the pipeline's answer for each, the properties
 //! and the oracle comparison, tallied per pair.
 
+use crate::fixture_objects;
 use crate::paper_objects::paper_objects;
 use crate::rng::SplitMix64;
 use crate::soak::oracle_check::{compare, oracle_report};
 use crate::soak::pose_generator::{GapKind, PoseGenerator, SoakPose};
 use crate::soak::properties::{Property, PropertyChecker, PropertyFailure};
 use contact_pipeline::{ContactOptions, ContactPipeline, PairState, PreparedObject};
+use geom_param::MeshOptions;
 use std::collections::BTreeMap;
 
 /// What to run.
@@ -17,8 +19,11 @@ pub struct SoakConfig {
     pub poses: usize,
     /// Base seed: pose k of pair p has seed [`pose_seed`]`(seed, p, k)`.
     pub seed: u64,
-    /// Ordered pairs (A, B) by object name; empty for all 36.
+    /// Ordered pairs (A, B) by object name; empty for all pairs of the object set.
     pub pairs: Vec<(String, String)>,
+    /// Also the general fixture objects (rounded box, tube, bracket, loft), not only the six
+    /// paper objects.
+    pub general: bool,
 }
 
 /// The seed of pose `k` of the pair at index `pair` (0..36 in the order of
@@ -30,14 +35,31 @@ pub fn pose_seed(base: u64, pair: usize, k: usize) -> u64 {
     SplitMix64::new(mixed ^ ((pair as u64) << 40) ^ k as u64).next_u64()
 }
 
-/// Every ordered pair of the six paper objects, A first.
+/// Every ordered pair of the six paper objects, A first; with `general`, followed by every
+/// other ordered pair of all fixture objects (so that a paper pair keeps its index, and its
+/// poses their seeds).
 #[must_use]
-pub fn all_pairs() -> Vec<(String, String)> {
-    let names: Vec<String> = paper_objects().into_iter().map(|o| o.name).collect();
-    names
-        .iter()
-        .flat_map(|a| names.iter().map(move |b| (a.clone(), b.clone())))
-        .collect()
+pub fn all_pairs(general: bool) -> Vec<(String, String)> {
+    let paper: Vec<String> = paper_objects().into_iter().map(|o| o.name).collect();
+    let square = |names: &[String]| -> Vec<(String, String)> {
+        names
+            .iter()
+            .flat_map(|a| names.iter().map(move |b| (a.clone(), b.clone())))
+            .collect()
+    };
+    let mut pairs = square(&paper);
+    if general {
+        let all: Vec<String> = fixture_objects()
+            .iter()
+            .map(|o| o.name().to_string())
+            .collect();
+        let more: Vec<_> = square(&all)
+            .into_iter()
+            .filter(|p| !pairs.contains(p))
+            .collect();
+        pairs.extend(more);
+    }
+    pairs
 }
 
 /// A worst error and the pose it came from.
@@ -135,20 +157,22 @@ pub struct SoakSummary {
     pub pairs: Vec<((String, String), PairStats)>,
 }
 
-/// The six objects prepared for `pipeline`, by name.
+/// Every fixture object (paper and general) prepared for `pipeline`, by name.
 ///
 /// # Errors
 /// A message if an object fails to build.
 pub fn prepare_objects(
     pipeline: &ContactPipeline,
 ) -> Result<BTreeMap<String, PreparedObject>, String> {
-    paper_objects()
+    let mesh = MeshOptions {
+        chordal_tolerance: pipeline.options().chordal_tolerance,
+    };
+    fixture_objects()
         .iter()
         .map(|d| {
-            pipeline
-                .prepare_description(d)
-                .map(|p| (d.name.clone(), p))
-                .map_err(|e| format!("{}: {e}", d.name))
+            d.build(&mesh)
+                .map(|model| (d.name().to_string(), pipeline.prepare(model)))
+                .map_err(|e| format!("{}: {e}", d.name()))
         })
         .collect()
 }
@@ -241,7 +265,7 @@ pub fn run_soak(
 ) -> Result<SoakSummary, String> {
     let pipeline = ContactPipeline::new(ContactOptions::default()).map_err(|e| e.to_string())?;
     let objects = prepare_objects(&pipeline)?;
-    let all = all_pairs();
+    let all = all_pairs(config.general);
     let chosen: Vec<usize> = if config.pairs.is_empty() {
         (0..all.len()).collect()
     } else {
