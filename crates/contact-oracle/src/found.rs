@@ -4,13 +4,19 @@ use crate::kdtree::KdTree;
 use crate::polish::{Eval, Pair};
 use crate::posed::PosedSolid;
 use crate::report::OracleContact;
+use geom_param::FeatureLocation;
 
-/// Builds the contact for a polished pair. The distance is |S_b − S_a| signed by A's outward
-/// normal; the normal is the unit connecting vector oriented so that
+/// Builds the contact for a polished pair. The distance is |S_b − S_a|, negative when
+/// `negative`; the normal is the unit connecting vector oriented so that
 /// point_b = point_a + distance · normal (A's face normal when the points coincide, which is
-/// also A's outward normal wherever the connecting vector is normal to A).
+/// also A's outward normal wherever the connecting vector is normal to A). Where A's point is
+/// on an edge or vertex, A has a cone of normals: the normal is minus B's face normal where
+/// the connecting vector lies along it (to the residual) or the points coincide, otherwise the
+/// connecting vector, and for two coinciding points both on edges or vertices A's outward
+/// direction there ([`PosedSolid::sign_normal`]).
 pub(crate) fn contact(
     a: &PosedSolid,
+    b: &PosedSolid,
     pair: &Pair,
     eval: &Eval,
     residual: f64,
@@ -19,7 +25,20 @@ pub(crate) fn contact(
 ) -> OracleContact {
     let (pa, pb) = (eval.pa.point, eval.pb.point);
     let gap = pb - pa;
-    let face_normal = a.normal(pair.fa, pair.a[0], pair.a[1]);
+    // The normal the connecting vector must lie along (to the residual) to be replaced by it:
+    // A's face normal, or minus B's where A's point is on an edge or vertex and B's inside a
+    // face.
+    let location_a = a.location(pair.fa, pair.a, pair.held_a);
+    let location_b = b.location(pair.fb, pair.b, pair.held_b);
+    let (face_normal, touching_normal) = match location_a {
+        FeatureLocation::Face { .. } => (a.normal(pair.fa, pair.a[0], pair.a[1]), None),
+        _ => (
+            matches!(location_b, FeatureLocation::Face { .. })
+                .then(|| b.normal(pair.fb, pair.b[0], pair.b[1]).map(|n| -n))
+                .flatten(),
+            a.sign_normal(pair.fa, pair.a, pair.held_a),
+        ),
+    };
     let length = gap.length();
     let sign = if negative { -1.0 } else { 1.0 };
     let distance = sign * length;
@@ -32,6 +51,7 @@ pub(crate) fn contact(
         _ => (gap / distance)
             .try_normalize()
             .or(face_normal)
+            .or(touching_normal)
             .unwrap_or(glam::DVec3::Z),
     };
     OracleContact {
@@ -43,6 +63,8 @@ pub(crate) fn contact(
         params_a: pair.a,
         face_b: pair.fb,
         params_b: pair.b,
+        location_a,
+        location_b,
         residual,
         iterations,
     }

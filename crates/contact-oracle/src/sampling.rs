@@ -5,11 +5,17 @@
 //! and bounds the solid (a surface point lies within one patch diameter of a patch corner).
 //! The fine pass samples only the patches within reach of the other solid's box. Rows include
 //! the face's boundary (edges and poles are sampled); a pole row holds one sample per patch.
+//!
+//! A trimmed face is gridded over its trim's (u, v) box and keeps only the samples inside the
+//! trim; its boundary is sampled on the edges themselves: every edge that runs along no side
+//! of a rectangle (both its uses on trims) gets samples at about `spacing` along its curve,
+//! its end vertices included, each a [`Sample`] of its first use's face at the use's (u, v).
 
 use crate::kdtree::KdTree;
 use crate::posed::PosedSolid;
-use geom_param::{FaceId, Solid};
-use glam::DVec3;
+use crate::trim_grid::{Region, classify};
+use geom_param::{EdgeId, EdgeOn, FaceId, ParamRange, Solid};
+use glam::{DVec2, DVec3};
 
 /// Coarse patches are about this many fine spacings across.
 const COARSE: f64 = 8.0;
@@ -99,10 +105,27 @@ impl CoarseSolid {
     }
 }
 
+/// The (u, v) box a face is sampled over: its trim's bounds (not periodic: the trim's
+/// polylines may run past a period, evaluation wraps), or its domain.
+fn param_box(solid: &Solid, face: FaceId) -> [ParamRange; 2] {
+    match &solid.face(face).trim {
+        Some(trim) => {
+            let (lo, hi) = trim.bounds();
+            let range = |i: usize| ParamRange {
+                min: lo[i],
+                max: hi[i],
+                periodic: false,
+            };
+            [range(0), range(1)]
+        }
+        None => solid.face(face).surface.domain(),
+    }
+}
+
 /// Largest |S_u| and |S_v| over a probe grid of the face (object frame; the pose does not
 /// change lengths).
 fn speeds(solid: &Solid, face: FaceId) -> (f64, f64) {
-    let [du, dv] = solid.face(face).surface.domain();
+    let [du, dv] = param_box(solid, face);
     let mut out = (0.0_f64, 0.0_f64);
     for i in 0..=PROBE {
         for j in 0..=PROBE {
@@ -120,7 +143,7 @@ pub(crate) fn object_extent(solid: &Solid) -> f64 {
     let mut bounds = Aabb::empty();
     for f in 0..solid.faces.len() {
         let face = FaceId(f as u32);
-        let [du, dv] = solid.face(face).surface.domain();
+        let [du, dv] = param_box(solid, face);
         for i in 0..=PROBE {
             for j in 0..=PROBE {
                 let u = du.min + du.span() * i as f64 / PROBE as f64;
@@ -153,7 +176,7 @@ pub(crate) fn coarse(posed: &PosedSolid, spacing: f64) -> Option<CoarseSolid> {
     let mut bounds = Aabb::empty();
     for f in 0..solid.faces.len() {
         let face = FaceId(f as u32);
-        let [du, dv] = solid.face(face).surface.domain();
+        let [du, dv] = param_box(solid, face);
         let (su, sv) = speeds(solid, face);
         let step = COARSE * spacing;
         let us = grid(du.min, du.span(), pieces(du.span(), su, step, MAX_PATCHES));
@@ -225,7 +248,7 @@ pub(crate) fn fine(
     let mut needed = 0_usize;
     for cf in &coarse.faces {
         let nu = cf.us.len();
-        let [du, dv] = posed.solid.face(cf.face).surface.domain();
+        let [du, dv] = param_box(posed.solid, cf.face);
         for j in 0..cf.vs.len() - 1 {
             for i in 0..nu - 1 {
                 let c = [
@@ -244,6 +267,10 @@ pub(crate) fn fine(
                     continue;
                 }
                 let (u0, u1, v0, v1) = (cf.us[i], cf.us[i + 1], cf.vs[j], cf.vs[j + 1]);
+                let region = patch_in_trim(posed, cf.face, [u0, v0], [u1, v1]);
+                if region == Region::Outside {
+                    continue;
+                }
                 let mut sv = 0.0_f64;
                 let mut su = 0.0_f64;
                 for (u, v) in [
@@ -262,15 +289,19 @@ pub(crate) fn fine(
                 needed = needed.saturating_add((mv + 1).saturating_mul(mu + 1));
                 let last_u = !du.periodic && i + 2 == nu;
                 let last_v = !dv.periodic && j + 2 == cf.vs.len();
-                plan.push((cf.face, u0, u1, v0, v1, mv, last_u, last_v));
+                plan.push((cf.face, u0, u1, v0, v1, mv, last_u, last_v, region));
             }
         }
     }
+    let edges = edge_plan(posed, other, keep_distance, spacing);
+    needed = edges
+        .iter()
+        .fold(needed, |n, &(_, _, pieces)| n.saturating_add(pieces + 1));
     if needed > budget {
         return Err(needed);
     }
     let mut out = Vec::with_capacity(needed);
-    for (face, u0, u1, v0, v1, mv, last_u, last_v) in plan {
+    for (face, u0, u1, v0, v1, mv, last_u, last_v, region) in plan {
         let rows = if last_v { mv + 1 } else { mv };
         for t in 0..rows {
             // The offset shifts interior rows only: the boundary rows stay on the edges.
@@ -296,6 +327,9 @@ pub(crate) fn fine(
                 };
                 let u = u0 + (u1 - u0) * (frac / mu as f64).min(1.0);
                 let [u, v] = posed.normalize(face, [u, v]);
+                if region == Region::Boundary && !posed.inside(face, [u, v]) {
+                    continue;
+                }
                 let p = posed.eval(face, u, v);
                 out.push(Sample {
                     face,
@@ -306,5 +340,113 @@ pub(crate) fn fine(
             }
         }
     }
+    for (edge, range, pieces) in edges {
+        edge_samples(
+            posed,
+            other,
+            keep_distance,
+            edge,
+            range,
+            pieces,
+            offset,
+            &mut out,
+        );
+    }
     Ok(out)
+}
+
+/// Where the patch [lo, hi] of `face` (in the trim's unwrapped (u, v)) lies with respect to
+/// the face's trim ([`crate::trim_grid::classify`]); every point of a face without trim is
+/// inside.
+fn patch_in_trim(posed: &PosedSolid, face: FaceId, lo: [f64; 2], hi: [f64; 2]) -> Region {
+    match posed.trim(face) {
+        Some(trim) => classify(
+            trim,
+            posed.trim_extent(face),
+            DVec2::from(lo),
+            DVec2::from(hi),
+        ),
+        None => Region::Inside,
+    }
+}
+
+/// The edges sampled on their curves (no use along a rectangle side, whose boundary rows
+/// sample it already) that come near `other` (a coarse probe of the curve within
+/// `keep_distance` + the probe step of its surface): (edge, parameter range, pieces of about
+/// `spacing`).
+fn edge_plan(
+    posed: &PosedSolid,
+    other: &CoarseSolid,
+    keep_distance: f64,
+    spacing: f64,
+) -> Vec<(EdgeId, ParamRange, usize)> {
+    let solid = posed.solid;
+    let mut out = Vec::new();
+    for (e, edge) in solid.edges.iter().enumerate() {
+        if edge.uses.iter().any(|u| matches!(u.on, EdgeOn::Side(_))) {
+            continue;
+        }
+        let id = EdgeId(e as u32);
+        let range = edge.curve.domain();
+        let probes: Vec<_> = (0..=PROBE)
+            .map(|k| posed.eval_edge(id, range.min + range.span() * k as f64 / PROBE as f64))
+            .collect();
+        let speed = probes.iter().map(|c| c.d1.length()).fold(0.0, f64::max);
+        let step = probes
+            .windows(2)
+            .map(|w| w[0].point.distance(w[1].point))
+            .fold(0.0, f64::max);
+        let limit = keep_distance + step;
+        let near = probes.iter().any(|c| {
+            other.bounds.distance(c.point) <= limit
+                && other
+                    .distance_bound(c.point, limit)
+                    .is_some_and(|d| d <= limit)
+        });
+        if near {
+            out.push((id, range, pieces(range.span(), speed, spacing, 1 << 20)));
+        }
+    }
+    out
+}
+
+/// Samples of `edge` at `pieces` + 1 parameters over `range` (the ends unshifted, the others
+/// shifted by `offset` / 2 of a piece, as the faces' interior rows are; a periodic curve's
+/// last one is its first), those within `keep_distance` of `other`'s surface bound, appended
+/// to `out` as samples of the edge's first use.
+#[allow(clippy::too_many_arguments)]
+fn edge_samples(
+    posed: &PosedSolid,
+    other: &CoarseSolid,
+    keep_distance: f64,
+    edge: EdgeId,
+    range: ParamRange,
+    pieces: usize,
+    offset: f64,
+    out: &mut Vec<Sample>,
+) {
+    let use_ = posed.solid.edge(edge).uses[0];
+    let last = if range.periodic { pieces - 1 } else { pieces };
+    for k in 0..=last {
+        let frac = if !range.periodic && (k == 0 || k == pieces) {
+            k as f64
+        } else {
+            k as f64 + 0.5 * offset
+        };
+        let t = range.min + range.span() * frac / pieces as f64;
+        let uv = posed.use_params(&use_, t);
+        let point = posed.eval(use_.face, uv[0], uv[1]).point;
+        let near = other.bounds.distance(point) <= keep_distance
+            && other
+                .distance_bound(point, keep_distance)
+                .is_some_and(|d| d <= keep_distance);
+        if near {
+            out.push(Sample {
+                face: use_.face,
+                uv,
+                point,
+                normal: posed.normal(use_.face, uv[0], uv[1]).unwrap_or(DVec3::ZERO),
+            });
+        }
+    }
 }

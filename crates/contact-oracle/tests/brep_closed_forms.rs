@@ -1,0 +1,153 @@
+//! The oracle on solids that are not solids of revolution (trimmed planar faces, straight
+//! edges with end vertices, a cylindrical hole) against contacts known in closed form: a
+//! sphere on a block's face, beside its edge (distance to a line), off its corner (distance to
+//! a point), inside a plate's hole (distance to a cylinder from inside), on the hole's rim
+//! (distance to a circle edge); each scene also with
+//! A and B exchanged, and under random rigid motions of the whole scene.
+
+mod support;
+
+use contact_oracle::OracleState;
+use contact_oracle::closed_form::{
+    BrepScene, sphere_in_hole, sphere_near_block_corner, sphere_near_block_edge,
+    sphere_on_block_face, sphere_on_hole_rim,
+};
+use geom_param::{DVec2, DVec3, FeatureLocation};
+use support::{Errors, Rng, check_brep_scene};
+
+/// Gaps from well apart to overlapping (mm).
+const GAPS: [f64; 7] = [0.05, 0.001, 1e-5, 0.0, -0.0005, -0.01, 0.5];
+/// Distance within 1e-9 x size, points within 1e-7 x size (the scenes span about 40 mm), as
+/// for the solids of revolution.
+const DISTANCE_TOLERANCE: f64 = 1e-9 * 40.0;
+const POINT_TOLERANCE: f64 = 1e-7 * 40.0;
+
+/// Which feature the block's (or plate's) point must be on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum On {
+    Face,
+    Edge,
+    Vertex,
+}
+
+fn kind(location: &FeatureLocation) -> On {
+    match location {
+        FeatureLocation::Face { .. } => On::Face,
+        FeatureLocation::Edge { .. } => On::Edge,
+        FeatureLocation::Vertex { .. } => On::Vertex,
+    }
+}
+
+/// Runs `build` at every gap in `gaps` for `seeds` seeds, moved rigidly at random, as built
+/// (the built solid is B) and swapped (it is A); checks the contacts, the state against the
+/// band [-0.001, 0.1] mm and that the built solid's point is on the feature `on`.
+fn run(
+    name: &str,
+    gaps: &[f64],
+    seeds: u64,
+    on: On,
+    mut build: impl FnMut(f64, &mut Rng) -> BrepScene,
+) {
+    let mut worst = Errors::default();
+    for seed in 0..seeds {
+        let mut rng = Rng(seed * 7919 + 29);
+        for &gap in gaps {
+            let scene = build(gap, &mut rng).moved(&rng.motion());
+            for (scene, built_is_a) in [(scene.clone(), false), (scene.swapped(), true)] {
+                let (report, errors) =
+                    check_brep_scene(&scene, DISTANCE_TOLERANCE, POINT_TOLERANCE);
+                let expected = if gap < -0.001 {
+                    OracleState::Penetration
+                } else if gap <= 0.1 {
+                    OracleState::Contact
+                } else {
+                    OracleState::Separated
+                };
+                assert_eq!(report.state(-0.001, 0.1), expected, "{}", scene.name);
+                let c = &report.contacts[0];
+                let location = if built_is_a {
+                    c.location_a
+                } else {
+                    c.location_b
+                };
+                assert_eq!(kind(&location), on, "{}: {c:?}", scene.name);
+                worst = worst.max(errors);
+            }
+        }
+    }
+    println!("{name}: worst errors {worst:?}");
+}
+
+#[test]
+fn sphere_on_a_block_face_matches_closed_form() {
+    run("sphere_on_block_face", &GAPS, 2, On::Face, |gap, rng| {
+        let offset = DVec2::new(rng.range(-8.0, 8.0), rng.range(-5.0, 5.0));
+        sphere_on_block_face(
+            5.0,
+            DVec3::new(20.0, 14.0, 10.0),
+            gap,
+            offset,
+            rng.rotation(),
+        )
+    });
+}
+
+#[test]
+fn sphere_beside_a_block_edge_matches_closed_form() {
+    run("sphere_near_block_edge", &GAPS, 2, On::Edge, |gap, rng| {
+        let angle = rng.range(0.2, 1.37);
+        let along = rng.range(-5.0, 5.0);
+        sphere_near_block_edge(
+            5.0,
+            DVec3::new(20.0, 14.0, 10.0),
+            gap,
+            angle,
+            along,
+            rng.rotation(),
+        )
+    });
+}
+
+#[test]
+fn sphere_off_a_block_corner_matches_closed_form() {
+    run(
+        "sphere_near_block_corner",
+        &GAPS,
+        2,
+        On::Vertex,
+        |gap, rng| {
+            let direction = DVec3::new(
+                rng.range(0.3, 1.0),
+                rng.range(0.3, 1.0),
+                rng.range(0.3, 1.0),
+            );
+            sphere_near_block_corner(
+                5.0,
+                DVec3::new(20.0, 14.0, 10.0),
+                gap,
+                direction,
+                rng.rotation(),
+            )
+        },
+    );
+}
+
+#[test]
+fn sphere_inside_a_hole_matches_closed_form() {
+    run("sphere_in_hole", &GAPS, 1, On::Face, |gap, rng| {
+        let azimuth = rng.range(0.0, std::f64::consts::TAU);
+        let height = rng.range(-1.0, 1.0);
+        sphere_in_hole(4.0, 6.0, 12.0, gap, height, azimuth, rng.rotation())
+    });
+}
+
+/// The rim is a circle edge between a face over its whole rectangle (the hole's wall, along
+/// its side) and a trimmed one (the plate's top, on its hole loop).
+#[test]
+fn sphere_on_a_hole_rim_matches_closed_form() {
+    run("sphere_on_hole_rim", &GAPS, 1, On::Edge, |gap, rng| {
+        let tilt = rng.range(0.2, 1.37);
+        let azimuth = rng.range(0.0, std::f64::consts::TAU);
+        sphere_on_hole_rim(3.0, 6.0, 8.0, gap, tilt, azimuth, rng.rotation())
+    });
+}

@@ -1,0 +1,57 @@
+//! The closed-form B-rep solids are valid boundary representations (geom-param's validation)
+//! with the expected topology, and their trims say inside where the closed form does.
+
+use contact_oracle::closed_form::brep::{block, holed_plate};
+use geom_param::{DVec2, DVec3, validate};
+
+#[test]
+fn block_is_a_valid_closed_shell() {
+    let solid = block(DVec3::new(20.0, 12.0, 8.0));
+    validate(&solid).expect("valid");
+    assert_eq!(
+        (solid.faces.len(), solid.edges.len(), solid.vertices.len()),
+        (6, 12, 8)
+    );
+    // Every corner ends three edges, every edge has two ends, 12 mm apart at most.
+    for v in &solid.vertices {
+        assert_eq!(v.edges.len(), 3);
+        assert!((v.point.abs() - DVec3::new(10.0, 6.0, 4.0)).length() < 1e-12);
+    }
+    // Each face's trim holds the face's centre and not a point beyond its side.
+    for (f, face) in solid.faces.iter().enumerate() {
+        let trim = face.trim.as_ref().expect("trimmed");
+        let (lo, hi) = trim.bounds();
+        let mid = 0.5 * (lo + hi);
+        assert!(trim.contains(mid, 0.0), "face {f}");
+        assert!(!trim.contains(hi + DVec2::splat(0.01), 0.0), "face {f}");
+        let n = face.surface.normal(mid.x, mid.y).expect("normal");
+        let p = face.surface.eval(mid.x, mid.y).point;
+        // Outward: the centre of a face lies along its normal from the block's centre.
+        assert!((p.normalize() - n).length() < 1e-12, "face {f}: {p} {n}");
+    }
+}
+
+#[test]
+fn holed_plate_is_a_valid_closed_shell() {
+    let solid = holed_plate(40.0, 10.0, 6.0);
+    validate(&solid).expect("valid");
+    assert_eq!(
+        (solid.faces.len(), solid.edges.len(), solid.vertices.len()),
+        (7, 14, 8)
+    );
+    let top = &solid.faces[1];
+    let trim = top.trim.as_ref().expect("trimmed");
+    assert_eq!(trim.loops.len(), 2);
+    // The top face's (u, v) is (x, y) from its corner (-20, -20): the hole's centre is out,
+    // a point between the hole and the square's side in.
+    assert!(!trim.contains(DVec2::new(20.0, 20.0), 0.0));
+    assert!(!trim.contains(DVec2::new(20.0 + 5.9, 20.0), 0.0));
+    assert!(trim.contains(DVec2::new(20.0 + 6.1, 20.0), 0.0));
+    assert!(trim.contains(DVec2::new(1.0, 39.0), 0.0));
+    // The wall's normal points at the axis.
+    let wall = &solid.faces[6];
+    let n = wall.surface.normal(0.3, 2.0).expect("normal");
+    let p = wall.surface.eval(0.3, 2.0).point;
+    assert!((n + DVec3::new(p.x, p.y, 0.0).normalize()).length() < 1e-12);
+    assert!((p.z - 3.0).abs() < 1e-12 && (p.truncate().length() - 6.0).abs() < 1e-12);
+}
