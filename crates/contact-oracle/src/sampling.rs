@@ -450,3 +450,154 @@ fn edge_samples(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::closed_form::brep::{block, holed_plate, tetrahedron};
+    use geom_param::DPose3;
+
+    /// Fine samples of `solid` at `spacing`, against itself so that every patch is in reach.
+    fn samples(solid: &Solid, spacing: f64) -> Vec<Sample> {
+        let posed = PosedSolid::new(solid, &DPose3::IDENTITY);
+        let c = coarse(&posed, spacing).expect("finite");
+        fine(&posed, &c, &c, 100.0, spacing, 0.0, 1 << 22).expect("within budget")
+    }
+
+    /// A block's samples lie on its six face rectangles (closed form: one coordinate at ±half,
+    /// the others within ±half), every corner is a sample and every edge is sampled at about
+    /// the spacing.
+    #[test]
+    fn block_samples_stay_in_the_faces_and_cover_edges_and_corners() {
+        let half = DVec3::new(10.0, 7.0, 5.0);
+        let spacing = 0.5;
+        let all = samples(&block(2.0 * half), spacing);
+        let eps = 1e-9;
+        for s in &all {
+            let q = s.point.abs();
+            assert!(q.cmple(half + eps).all(), "outside the block: {s:?}");
+            let on = (half - q).cmple(DVec3::splat(eps));
+            assert!(on.any(), "not on a face: {s:?}");
+        }
+        for k in 0..8 {
+            let corner = half
+                * DVec3::new(
+                    if k & 1 == 0 { -1.0 } else { 1.0 },
+                    if k & 2 == 0 { -1.0 } else { 1.0 },
+                    if k & 4 == 0 { -1.0 } else { 1.0 },
+                );
+            assert!(
+                all.iter().any(|s| s.point.distance(corner) <= eps),
+                "corner {corner} not sampled"
+            );
+        }
+        // Points on an edge: two coordinates at ±half. Each edge of length L holds at least
+        // L / spacing of them, and no gap along it is wider than the spacing (x 1.25 safety).
+        for axis in 0..3 {
+            let length = 2.0 * half[axis];
+            for signs in 0..4 {
+                let mut along: Vec<f64> = all
+                    .iter()
+                    .filter(|s| {
+                        (0..3).filter(|&i| i != axis).enumerate().all(|(n, i)| {
+                            let sign = if signs >> n & 1 == 0 { -1.0 } else { 1.0 };
+                            (s.point[i] - sign * half[i]).abs() <= eps
+                        })
+                    })
+                    .map(|s| s.point[axis])
+                    .collect();
+                along.sort_by(f64::total_cmp);
+                along.dedup_by(|x, y| (*x - *y).abs() <= eps);
+                assert!(
+                    along.len() as f64 >= length / spacing,
+                    "{axis} {signs}: {along:?}"
+                );
+                let widest = along.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+                assert!(
+                    widest <= 1.25 * spacing + eps,
+                    "{axis} {signs}: gap {widest}"
+                );
+            }
+        }
+    }
+
+    /// A tetrahedron's triangles are trimmed from their bounding rectangles: the samples lie
+    /// in the triangles (closed form: barycentric coordinates >= 0 on one face's plane), the
+    /// slanted sides, which no grid row follows, are sampled on the edges at about the
+    /// spacing, and the corners are samples.
+    #[test]
+    fn tetrahedron_samples_stay_in_the_triangles_and_cover_the_edges() {
+        let p = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(10.0, 1.0, 0.0),
+            DVec3::new(2.0, 9.0, 1.0),
+            DVec3::new(3.0, 3.0, 8.0),
+        ];
+        let spacing = 0.4;
+        let all = samples(&tetrahedron(p), spacing);
+        let eps = 1e-9;
+        let barycentric = |q: DVec3, [a, b, c]: [DVec3; 3]| {
+            let n = (b - a).cross(c - a);
+            let area = n.length_squared();
+            let height = (q - a).dot(n) / n.length();
+            let w = [
+                (c - b).cross(q - b).dot(n) / area,
+                (a - c).cross(q - c).dot(n) / area,
+                (b - a).cross(q - a).dot(n) / area,
+            ];
+            (height, w)
+        };
+        let triangles = [
+            [p[1], p[2], p[3]],
+            [p[0], p[2], p[3]],
+            [p[0], p[1], p[3]],
+            [p[0], p[1], p[2]],
+        ];
+        for s in &all {
+            let on_one = triangles.iter().any(|&t| {
+                let (height, w) = barycentric(s.point, t);
+                height.abs() <= eps && w.iter().all(|&x| x >= -eps)
+            });
+            assert!(on_one, "not in a triangle: {s:?}");
+        }
+        for &corner in &p {
+            assert!(all.iter().any(|s| s.point.distance(corner) <= eps));
+        }
+        for i in 0..4 {
+            for j in i + 1..4 {
+                let (a, b) = (p[i], p[j]);
+                let length = a.distance(b);
+                let dir = (b - a) / length;
+                let mut along: Vec<f64> = all
+                    .iter()
+                    .filter(|s| (s.point - a).reject_from_normalized(dir).length() <= eps)
+                    .map(|s| (s.point - a).dot(dir))
+                    .collect();
+                along.sort_by(f64::total_cmp);
+                let widest = along.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+                assert!(along.len() >= 2, "edge {i}-{j} not sampled");
+                assert!(along[0] <= eps && along[along.len() - 1] >= length - eps);
+                assert!(widest <= 1.25 * spacing + eps, "edge {i}-{j}: gap {widest}");
+            }
+        }
+    }
+
+    /// No sample of the plate's top or bottom face falls in the hole (closed form: radius >=
+    /// the hole's), and the hole's rim circles are sampled.
+    #[test]
+    fn plate_samples_skip_the_hole() {
+        let (radius, thickness) = (6.0, 8.0);
+        let all = samples(&holed_plate(40.0, thickness, radius), 0.5);
+        let eps = 1e-9;
+        let mut rim = 0;
+        for s in &all {
+            let rho = s.point.truncate().length();
+            assert!(rho >= radius - eps, "in the hole: {s:?}");
+            if (s.point.z.abs() - 0.5 * thickness).abs() <= eps && rho <= radius + eps {
+                rim += 1;
+            }
+        }
+        // Two circles of circumference 37.7 mm at a 0.5 mm spacing.
+        assert!(rim >= 2 * 75, "{rim} rim samples");
+    }
+}

@@ -105,3 +105,40 @@ pub(crate) fn classify(trim: &Trim, extent: f64, lo: DVec2, hi: DVec2) -> Region
         Region::Outside
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::closed_form::brep::holed_plate;
+
+    /// The grid agrees with the closed form of the plate's top face (outside the hole's
+    /// circle, inside the square) and with the trim's own classifier at points on a fine
+    /// lattice, boundary cells included.
+    #[test]
+    fn grid_containment_matches_the_closed_form() {
+        let solid = holed_plate(40.0, 8.0, 6.0);
+        let trim = solid.faces[1].trim.as_ref().expect("trimmed");
+        let grid = TrimGrid::new(trim);
+        let mut boundary_cells = 0;
+        for cell in &grid.cells {
+            boundary_cells += usize::from(*cell == Region::Boundary);
+        }
+        assert!(boundary_cells > 0 && boundary_cells < CELLS * CELLS / 2);
+        // The top face's (u, v) is (x + 20, y + 20).
+        for i in 0..=200 {
+            for j in 0..=200 {
+                let uv = DVec2::new(-1.0 + 0.21 * f64::from(i), -1.0 + 0.21 * f64::from(j));
+                let (x, y) = (uv.x - 20.0, uv.y - 20.0);
+                let rho = x.hypot(y);
+                let truth = rho > 6.0 && x.abs() < 20.0 && y.abs() < 20.0;
+                let clear = (rho - 6.0).abs() > 1e-9
+                    && (x.abs() - 20.0).abs() > 1e-9
+                    && (y.abs() - 20.0).abs() > 1e-9;
+                if clear {
+                    assert_eq!(grid.contains(trim, uv, 0.0), truth, "{uv}");
+                }
+                assert_eq!(grid.contains(trim, uv, 0.0), trim.contains(uv, 0.0), "{uv}");
+            }
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! The closed-form B-rep solids are valid boundary representations (geom-param's validation)
 //! with the expected topology, and their trims say inside where the closed form does.
 
-use contact_oracle::closed_form::brep::{block, holed_plate};
+use contact_oracle::closed_form::brep::{block, holed_plate, tetrahedron};
 use geom_param::{DVec2, DVec3, validate};
 
 #[test]
@@ -54,4 +54,28 @@ fn holed_plate_is_a_valid_closed_shell() {
     let p = wall.surface.eval(0.3, 2.0).point;
     assert!((n + DVec3::new(p.x, p.y, 0.0).normalize()).length() < 1e-12);
     assert!((p.z - 3.0).abs() < 1e-12 && (p.truncate().length() - 6.0).abs() < 1e-12);
+}
+
+#[test]
+fn tetrahedron_is_a_valid_closed_shell() {
+    let points = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(10.0, 1.0, 0.0),
+        DVec3::new(2.0, 9.0, 1.0),
+        DVec3::new(3.0, 3.0, 8.0),
+    ];
+    let solid = tetrahedron(points);
+    validate(&solid).expect("valid");
+    assert_eq!(
+        (solid.faces.len(), solid.edges.len(), solid.vertices.len()),
+        (4, 6, 4)
+    );
+    let centroid = points.iter().copied().sum::<DVec3>() / 4.0;
+    for face in &solid.faces {
+        let (lo, hi) = face.trim.as_ref().expect("trimmed").bounds();
+        let mid = 0.5 * (lo + hi);
+        let n = face.surface.normal(mid.x, mid.y).expect("normal");
+        let p = face.surface.eval(mid.x, mid.y).point;
+        assert!((p - centroid).dot(n) > 0.0, "inward normal");
+    }
 }

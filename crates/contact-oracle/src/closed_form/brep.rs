@@ -1,5 +1,5 @@
-//! Solids built face by face for the closed-form scenes: a rectangular block and a square plate
-//! with a cylindrical hole. Every planar face is a plane trimmed by its loops (an outer loop of
+//! Solids built face by face for the closed-form scenes and tests: a rectangular block, a
+//! tetrahedron and a square plate with a cylindrical hole. Every planar face is a plane trimmed by its loops (an outer loop of
 //! straight edges, counter-clockwise, and for the plate a circular hole, clockwise); edges are
 //! straight lines between corner vertices, or circles about the z axis.
 
@@ -42,6 +42,11 @@ struct EdgeDraft {
     ends: Option<[VertexId; 2]>,
 }
 
+/// [`BOX_FACES`] as slices.
+fn box_faces() -> Vec<&'static [usize]> {
+    BOX_FACES.iter().map(|f| &f[..]).collect()
+}
+
 /// A polyhedron of trimmed planar faces under construction.
 struct PlanarBuilder {
     points: Vec<DVec3>,
@@ -62,7 +67,7 @@ impl PlanarBuilder {
     /// the corner `points`. Each plane has its origin at the cycle's first corner and its x
     /// axis along the first side; its domain is the cycle's (u, v) box grown by a quarter on
     /// every side, so the trim lies strictly inside.
-    fn new(points: Vec<DVec3>, faces: &[[usize; 4]]) -> Self {
+    fn new(points: Vec<DVec3>, faces: &[&[usize]]) -> Self {
         let mut out = Self {
             points,
             planes: Vec::new(),
@@ -238,7 +243,27 @@ impl PlanarBuilder {
 #[must_use]
 pub fn block(size: DVec3) -> Solid {
     let half = 0.5 * size;
-    PlanarBuilder::new(corners(-half, half), &BOX_FACES).finish(Vec::new())
+    PlanarBuilder::new(corners(-half, half), &box_faces()).finish(Vec::new())
+}
+
+/// The tetrahedron with these four corners (not coplanar): four trimmed triangular planes,
+/// six straight edges, four corners.
+#[must_use]
+pub fn tetrahedron(points: [DVec3; 4]) -> Solid {
+    let faces: Vec<[usize; 3]> = (0..4)
+        .map(|apart| {
+            let mut f: Vec<usize> = (0..4).filter(|&k| k != apart).collect();
+            // Counter-clockwise seen from outside: the normal points away from the fourth
+            // corner.
+            let (a, b, c) = (points[f[0]], points[f[1]], points[f[2]]);
+            if (b - a).cross(c - b).dot(points[apart] - a) > 0.0 {
+                f.swap(1, 2);
+            }
+            [f[0], f[1], f[2]]
+        })
+        .collect();
+    let cycles: Vec<&[usize]> = faces.iter().map(|f| &f[..]).collect();
+    PlanarBuilder::new(points.to_vec(), &cycles).finish(Vec::new())
 }
 
 /// A square plate `width` x `width` x `thickness` (mm) centred at the origin (faces normal to
@@ -249,7 +274,7 @@ pub fn block(size: DVec3) -> Solid {
 #[must_use]
 pub fn holed_plate(width: f64, thickness: f64, radius: f64) -> Solid {
     let half = DVec3::new(0.5 * width, 0.5 * width, 0.5 * thickness);
-    let mut builder = PlanarBuilder::new(corners(-half, half), &BOX_FACES);
+    let mut builder = PlanarBuilder::new(corners(-half, half), &box_faces());
     let (bottom, top) = (0, 1);
     // Seen from above, the top face's (u, v) is (x, y): the hole runs clockwise against the
     // circle's t. The bottom face's (u, v) is (y, x): there increasing t is clockwise.
