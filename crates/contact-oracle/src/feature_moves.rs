@@ -59,18 +59,47 @@ pub(crate) fn enter_trims(a: &PosedSolid, b: &PosedSolid, mut p: Pair, movable: 
     p
 }
 
-/// The step from `p` to `q` (same features, parameters not yet normalised) with every movable
-/// point free on a trimmed face that left the trim stopped where the step crosses the trim's
-/// boundary, held on the crossed edge; and whether any was. The crossing is the first one of
-/// the step's segment with the trim's polylines (the start itself when none is found: it lies
-/// within the polylines' flatness of the boundary), projected onto the exact boundary.
+/// What became of a step with respect to the trims of the faces it moves on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum TrimStep {
+    /// The step stays in every trim: the trial pair unchanged.
+    Inside(Pair),
+    /// The step leaves a trim part way: the trial pair with that point stopped on the crossed
+    /// edge, held there.
+    Cut(Pair),
+    /// The step leaves a trim right where it starts (the point is on the boundary and the
+    /// step points out): the start with that point (A's when the flag is true) held on the
+    /// boundary's edge, a move to take without a step where the objective does not descend
+    /// into the face ([`slope_into_face`]).
+    Hold(Pair, bool),
+}
+
+/// The slope of an objective with gradient `rate` (world frame) from a point held on an edge
+/// into the face of the edge's use it holds (per unit length, along the face's inward
+/// direction across the edge); `None` off an edge or where that direction is undefined.
+pub(crate) fn slope_into_face(solid: &PosedSolid, held: Held, rate: DVec3) -> Option<f64> {
+    let Held::Edge {
+        edge, t, use_index, ..
+    } = held
+    else {
+        return None;
+    };
+    let use_ = solid.solid.edge(edge).uses[use_index];
+    solid.inward(&use_, t).map(|w| rate.dot(w))
+}
+
+/// The step from `p` to `q` (same features, parameters not yet normalised) checked against
+/// the trims of the movable points free on trimmed faces (see [`TrimStep`]). The crossing is
+/// the first one of the step's segment with the trim's polylines (the start itself when none
+/// is found: it lies within the polylines' flatness of the boundary), projected onto the exact
+/// boundary.
 pub(crate) fn cut_at_trims(
     a: &PosedSolid,
     b: &PosedSolid,
     p: &Pair,
     mut q: Pair,
     movable: [bool; N],
-) -> (Pair, bool) {
+) -> TrimStep {
     let mut cut = false;
     for (on_a, solid) in [(true, a), (false, b)] {
         let (face, from, held) = p.side(on_a);
@@ -100,14 +129,25 @@ pub(crate) fn cut_at_trims(
                 }
             }
         }
-        let first = if first < 1.0 { first } else { 0.0 };
+        // Within rounding of the start (or no crossing found): the point is on the boundary.
+        let at_start = first >= 1.0 || first <= 1e-12;
+        let first = if at_start { 0.0 } else { first };
         let crossing = (start + first * step).to_array();
         if let Some((uv, held)) = onto_boundary(solid, face, crossing) {
+            if at_start {
+                let mut hold = *p;
+                hold.set_side(on_a, face, uv, held);
+                return TrimStep::Hold(hold, on_a);
+            }
             q.set_side(on_a, face, uv, held);
             cut = true;
         }
     }
-    (q, cut)
+    if cut {
+        TrimStep::Cut(q)
+    } else {
+        TrimStep::Inside(q)
+    }
 }
 
 /// For a face without trim and a step to `raw` (u, v) that leaves its rectangle across a side

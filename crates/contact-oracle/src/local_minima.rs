@@ -14,6 +14,7 @@ use crate::polish::{self, Limits, Pair, Polished};
 use crate::posed::PosedSolid;
 use crate::sampling::Sample;
 use geom_param::{Boundary, FaceId, ParamSide};
+use glam::{DVec2, DVec3};
 
 /// Neighbourhood radius for discrete minima, in spacings.
 pub(crate) const NEIGHBOURHOOD: f64 = 1.5;
@@ -90,7 +91,7 @@ pub(crate) fn polish(
         if !p.converged {
             return Outcome::Rejected;
         }
-        if p.eval.r.length() <= 10.0 * limits.tolerance && !touching(a, b, &p) {
+        if p.eval.r.length() <= 10.0 * limits.tolerance && !touching(a, b, &p, limits.tolerance) {
             return Outcome::Crossing(p.pair);
         }
         if !second_order_ok(&p) {
@@ -102,7 +103,7 @@ pub(crate) fn polish(
         return Outcome::Rejected;
     }
     let distance = p.eval.r.length();
-    if distance <= 10.0 * limits.tolerance && !touching(a, b, &p) {
+    if distance <= 10.0 * limits.tolerance && !touching(a, b, &p, limits.tolerance) {
         return Outcome::Crossing(p.pair);
     }
     if !second_order_ok(&p) {
@@ -113,37 +114,78 @@ pub(crate) fn polish(
 }
 
 /// Whether two coinciding points are a touch rather than a crossing: some direction n lies in
-/// A's outward normal cone with −n in B's. Both on faces: opposite normals (to 1e-6), or else,
-/// where a point is held at a rectangle side bounded by an edge, that point taken on the edge.
-/// One on a face: its normal (negated for B's) tested against the other's cone. Both on edges:
-/// the common normal of the two tangents. Otherwise (a vertex against an edge or vertex) a
-/// crossing, which the penetration search then examines.
-fn touching(a: &PosedSolid, b: &PosedSolid, p: &Polished) -> bool {
-    let mut pair = p.pair;
-    if pair.on_faces() {
-        let na = a.normal(pair.fa, pair.a[0], pair.a[1]);
-        let nb = b.normal(pair.fb, pair.b[0], pair.b[1]);
-        if matches!((na, nb), (Some(na), Some(nb)) if (na + nb).length() <= 1e-6) {
-            return true;
-        }
-        let lifted = [(true, a), (false, b)].map(|(on_a, solid)| {
-            let k = if on_a { 0 } else { 2 };
-            let (face, uv, _) = pair.side(on_a);
-            (k..k + 2)
-                .filter(|&k| p.active[k])
-                .find_map(|k| on_side_edge(solid, face, uv, k % 2))
+/// A's outward normal cone with −n in B's, for the features the points are on or, where the
+/// points settled a hair from a boundary, the features next to them (see [`nearby`]). Both on
+/// faces: opposite normals (to 1e-6). One on a face: its normal (negated for B's) tested
+/// against the other's cone. Both on edges: the common normal of the two tangents. Otherwise
+/// (a vertex against an edge or vertex) a crossing, which the penetration search then
+/// examines.
+fn touching(a: &PosedSolid, b: &PosedSolid, p: &Polished, tolerance: f64) -> bool {
+    let candidates_a = nearby(a, &p.pair, true, p.active, tolerance);
+    let candidates_b = nearby(b, &p.pair, false, p.active, tolerance);
+    candidates_a.iter().any(|&held_a| {
+        candidates_b.iter().any(|&held_b| {
+            let mut pair = p.pair;
+            (pair.held_a, pair.held_b) = (held_a, held_b);
+            cones_meet(a, b, &pair)
+        })
+    })
+}
+
+/// The features a point of `pair` may be taken on when testing a touch: its own; on a face
+/// without trim, the edge of a side its parameter is held at (`active`); on a trimmed face,
+/// the boundary edge within 10 x `tolerance` (mm) of it; on such an edge, the end vertex within
+/// 10 x `tolerance`.
+fn nearby(
+    solid: &PosedSolid,
+    pair: &Pair,
+    on_a: bool,
+    active: [bool; N],
+    tolerance: f64,
+) -> Vec<Held> {
+    let (face, uv, held) = pair.side(on_a);
+    let point = solid.eval_held(face, uv, held).point;
+    let near = |q: DVec3| q.distance(point) <= 10.0 * tolerance;
+    let mut out = vec![held];
+    if held == Held::Face {
+        let k = if on_a { 0 } else { 2 };
+        let side_edge = (k..k + 2)
+            .filter(|&k| active[k])
+            .find_map(|k| on_side_edge(solid, face, uv, k % 2));
+        let trim_edge = solid.trim(face).and_then(|trim| {
+            let n = trim.nearest(DVec2::from(uv))?;
+            let edge = trim.loops[n.loop_index].entries[n.index].edge;
+            near(solid.eval_edge(edge, n.t).point).then(|| Held::Edge {
+                edge,
+                t: n.t,
+                use_index: solid.use_on(edge, face),
+            })
         });
-        if lifted.iter().all(Option::is_none) {
-            return false;
-        }
-        for (on_a, held) in [(true, lifted[0]), (false, lifted[1])] {
-            if let Some(held) = held {
-                let (face, uv, _) = pair.side(on_a);
-                pair.set_side(on_a, face, uv, held);
+        out.extend(side_edge.into_iter().chain(trim_edge));
+    }
+    let edges: Vec<Held> = out[1..].to_vec();
+    for held in edges.into_iter().chain([held]) {
+        if let Held::Edge { edge, .. } = held {
+            if let Some(ends) = solid.solid.edge(edge).ends {
+                for v in ends {
+                    if near(solid.vertex_point(v)) && !out.contains(&Held::Vertex(v)) {
+                        out.push(Held::Vertex(v));
+                    }
+                }
             }
         }
     }
-    let pair = &pair;
+    out
+}
+
+/// Whether some direction lies in A's normal cone with its opposite in B's, for the features
+/// `pair` holds its points on (see [`touching`]).
+fn cones_meet(a: &PosedSolid, b: &PosedSolid, pair: &Pair) -> bool {
+    if pair.on_faces() {
+        let na = a.normal(pair.fa, pair.a[0], pair.a[1]);
+        let nb = b.normal(pair.fb, pair.b[0], pair.b[1]);
+        return matches!((na, nb), (Some(na), Some(nb)) if (na + nb).length() <= 1e-6);
+    }
     let n = match (pair.held_a, pair.held_b) {
         (Held::Face, _) => a.normal(pair.fa, pair.a[0], pair.a[1]),
         (_, Held::Face) => b.normal(pair.fb, pair.b[0], pair.b[1]).map(|n| -n),

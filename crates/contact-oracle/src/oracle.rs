@@ -152,7 +152,8 @@ fn run(
                 if through_material(&p.eval, &ta, &tb, options.tolerance) {
                     continue;
                 }
-                merge(&mut contacts, to_contact(a, b, &p, negative), merge_radius);
+                let c = to_contact(a, b, &p, negative, options.tolerance);
+                merge(&mut contacts, c, merge_radius);
             }
             Outcome::Crossing(q) => crossings.push(q),
             Outcome::Rejected => {}
@@ -195,7 +196,8 @@ fn run(
                 residual,
                 ..w
             };
-            merge(&mut contacts, to_contact(a, b, &w, true), merge_radius);
+            let c = to_contact(a, b, &w, true, options.tolerance);
+            merge(&mut contacts, c, merge_radius);
         }
     }
     contacts.retain(|c| c.distance <= options.reach);
@@ -219,6 +221,15 @@ fn swap(p: &Pair) -> Pair {
     p.swapped()
 }
 
-fn to_contact(a: &PosedSolid, b: &PosedSolid, p: &Polished, negative: bool) -> OracleContact {
-    contact(a, b, &p.pair, &p.eval, p.residual, p.iterations, negative)
+/// The contact of a polished pair; locations snap to edges and vertices within 10 x
+/// `tolerance` (the stationarity tolerance, mm).
+fn to_contact(
+    a: &PosedSolid,
+    b: &PosedSolid,
+    p: &Polished,
+    negative: bool,
+    tolerance: f64,
+) -> OracleContact {
+    let snap = 10.0 * tolerance;
+    contact(a, b, p, negative, snap)
 }

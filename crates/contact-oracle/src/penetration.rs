@@ -15,7 +15,7 @@
 //! and a witness must lie inside it, away from its boundary; B's foot may be anywhere on B,
 //! its faces, edges and vertices ([`crate::polish::minimise`]).
 
-use crate::feature_moves::{self, MAX_SWITCHES};
+use crate::feature_moves::{self, MAX_SWITCHES, TrimStep};
 use crate::held::Held;
 use crate::kdtree::KdTree;
 use crate::linalg::{self, N};
@@ -252,13 +252,36 @@ pub(crate) fn descend(
                 let raw = [trial.a[0] + scale * delta[0], trial.a[1] + scale * delta[1]];
                 trial.a = a.normalize(trial.fa, raw);
                 if !a.inside(trial.fa, trial.a) {
-                    // Out of A's trimmed face: on to the edge the step crosses.
+                    // Out of A's trimmed face: the step stops on the edge it crosses; on the
+                    // boundary already, the point is held on its edge (a move, φ unchanged).
                     let mut q = x.pair;
                     q.a = raw;
-                    let (q, crossed) =
-                        feature_moves::cut_at_trims(a, b, &x.pair, q, [true, true, false, false]);
-                    trial = polish::normalize(a, b, q);
-                    cut = crossed;
+                    match feature_moves::cut_at_trims(a, b, &x.pair, q, [true, true, false, false])
+                    {
+                        TrimStep::Inside(q) | TrimStep::Cut(q) => {
+                            trial = polish::normalize(a, b, q);
+                            cut = true;
+                        }
+                        TrimStep::Hold(q, _) => {
+                            // Held on the edge unless φ descends into the face (then the
+                            // step is refused and damped towards the gradient).
+                            let into = x
+                                .normal_b
+                                .and_then(|nb| feature_moves::slope_into_face(a, q.held_a, nb));
+                            let hold = switches < MAX_SWITCHES && into.is_none_or(|s| s >= -ANGLE);
+                            let held = hold
+                                .then(|| phi(a, b, polish::normalize(a, b, q), limits))
+                                .flatten();
+                            if let Some(t) = held {
+                                x = t;
+                                switches += 1;
+                                accepted = true;
+                                break;
+                            }
+                            mu *= 8.0;
+                            continue;
+                        }
+                    }
                 } else if let Some(held) = feature_moves::side_edge_crossed(a, trial.fa, raw) {
                     // Across a rectangle's side onto an edge of a general solid.
                     trial.held_a = held;

@@ -23,7 +23,7 @@
 //! Residuals are measured in 3-d: |g_k| / |c_k| is the component of the connecting vector
 //! along parameter direction k, which stays meaningful at a pole where |c_k| -> 0.
 
-use crate::feature_moves::{self, MAX_SWITCHES};
+use crate::feature_moves::{self, MAX_SWITCHES, TrimStep};
 use crate::held::Held;
 use crate::linalg::{self, N};
 use crate::posed::PosedSolid;
@@ -557,8 +557,30 @@ pub(crate) fn minimise(
         for (i, &k) in free.iter().enumerate() {
             set(&mut q, k, params(&p, k) + scale * delta[i]);
         }
-        // A step that leaves a trimmed face stops on the edge it crosses.
-        let (q, cut) = feature_moves::cut_at_trims(a, b, &p, q, mv);
+        // A step that leaves a trimmed face stops on the edge it crosses; one that leaves it
+        // where it starts holds the point on that edge (as a side's bound becomes active).
+        let (q, cut) = match feature_moves::cut_at_trims(a, b, &p, q, mv) {
+            TrimStep::Inside(q) => (q, false),
+            TrimStep::Cut(q) => (q, true),
+            TrimStep::Hold(q, on_a) => {
+                // Held on the edge only where f does not descend into the face (as a side's
+                // bound is active only where the gradient points out, and as `leave` releases
+                // the point exactly where it does): otherwise the step is refused and damped
+                // towards the gradient, which points in.
+                let rate = if on_a { e.r } else { -e.r };
+                let slope =
+                    feature_moves::slope_into_face(if on_a { a } else { b }, q.side(on_a).2, rate);
+                if slope.is_some_and(|s| s < -limits.tolerance) || switches >= MAX_SWITCHES {
+                    mu *= 8.0;
+                } else {
+                    p = normalize(a, b, q);
+                    switches += 1;
+                    e = evaluate(a, b, &p);
+                    last_step = f64::INFINITY;
+                }
+                continue;
+            }
+        };
         let q = normalize(a, b, q);
         let trial = evaluate(a, b, &q);
         // f is only known to rounding (64 ulp of the coordinates times |r|); inside that band

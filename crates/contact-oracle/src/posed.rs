@@ -228,8 +228,30 @@ impl<'a> PosedSolid<'a> {
     /// without trim, the edge along the rectangle side it lies on (t = the side's running
     /// parameter), the common end of two such edges at a corner, or an apex vertex (a
     /// collapsed side where the face has no normal; a pole is a smooth point of the face);
-    /// otherwise the face.
-    pub fn location(&self, face: FaceId, uv: [f64; 2], held: Held) -> FeatureLocation {
+    /// otherwise the face. A point within `snap` (mm) of its trimmed face's boundary is on
+    /// the boundary's edge, and a point on an edge within `snap` of an end on that vertex.
+    pub fn location(&self, face: FaceId, uv: [f64; 2], held: Held, snap: f64) -> FeatureLocation {
+        let point = self.eval_held(face, uv, held).point;
+        let mut held = held;
+        if let (Held::Face, Some(trim)) = (held, self.trim(face)) {
+            if let Some(n) = trim.nearest(DVec2::from(uv)) {
+                let edge = trim.loops[n.loop_index].entries[n.index].edge;
+                if self.eval_edge(edge, n.t).point.distance(point) <= snap {
+                    held = Held::Edge {
+                        edge,
+                        t: n.t,
+                        use_index: self.use_on(edge, face),
+                    };
+                }
+            }
+        }
+        if let Held::Edge { edge, .. } = held {
+            for v in self.solid.edge(edge).ends.into_iter().flatten() {
+                if self.vertex_point(v).distance(point) <= snap {
+                    return FeatureLocation::Vertex { id: v };
+                }
+            }
+        }
         if held != Held::Face || self.trim(face).is_some() {
             return held.location(face, uv);
         }

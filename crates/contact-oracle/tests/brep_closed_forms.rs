@@ -7,12 +7,14 @@
 
 mod support;
 
+use contact_oracle::ExpectedContact;
 use contact_oracle::OracleState;
+use contact_oracle::closed_form::SceneObject;
 use contact_oracle::closed_form::{
     BrepScene, sphere_in_hole, sphere_near_block_corner, sphere_near_block_edge,
     sphere_on_block_face, sphere_on_hole_rim,
 };
-use geom_param::{DVec2, DVec3, FeatureLocation};
+use geom_param::{DPose3, DQuat, DVec2, DVec3, FeatureLocation};
 use support::{Errors, Rng, check_brep_scene};
 
 /// Gaps from well apart to overlapping (mm).
@@ -150,4 +152,65 @@ fn sphere_on_a_hole_rim_matches_closed_form() {
         let azimuth = rng.range(0.0, std::f64::consts::TAU);
         sphere_on_hole_rim(3.0, 6.0, 8.0, gap, tilt, azimuth, rng.rotation())
     });
+}
+
+/// Two blocks whose ridges cross at right angles, `gap` apart: A (20 x 14 x 10) turned 45°
+/// about x, so that its edge y = 7, z = 5 is its highest line, along x at y = z = 2 s, height
+/// 12 s (s = √½); B (16 x 12 x 8) turned 45° about y, so that its edge x = 8, z = -4 is its
+/// lowest line, along y, moved to pass over x = `x0` at height 12 s + gap. One contact between
+/// the two edges (the distance between two lines), both points held on edges.
+fn crossed_ridges(gap: f64, x0: f64) -> BrepScene {
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let (ridge_y, ridge_z) = (2.0 * s, 12.0 * s);
+    let (rot_b, low) = (
+        DQuat::from_rotation_y(std::f64::consts::FRAC_PI_4),
+        DVec3::new(8.0, 0.0, -4.0),
+    );
+    let low = rot_b * low;
+    let translation = DVec3::new(x0 - low.x, ridge_y, ridge_z + gap - low.z);
+    let point_a = DVec3::new(x0, ridge_y, ridge_z);
+    BrepScene {
+        name: format!("crossed_ridges(gap {gap}, x0 {x0})"),
+        a: SceneObject::Block {
+            size: DVec3::new(20.0, 14.0, 10.0),
+        },
+        pose_a: DPose3 {
+            rotation: DQuat::from_rotation_x(std::f64::consts::FRAC_PI_4),
+            translation: DVec3::ZERO,
+        },
+        b: SceneObject::Block {
+            size: DVec3::new(16.0, 12.0, 8.0),
+        },
+        pose_b: DPose3 {
+            rotation: rot_b,
+            translation,
+        },
+        expected: vec![ExpectedContact {
+            point_a,
+            point_b: point_a + DVec3::Z * gap,
+            distance: gap,
+            normal: DVec3::Z,
+        }],
+    }
+}
+
+/// Edge against edge: both points held on edges, the distance between two crossing lines.
+/// Separated and touching gaps only: where two ridges overlap, the signed distance of either
+/// edge to the other solid has a kink at its deepest point (the other's wedge bisector), no
+/// stationary minimum, and the oracle reports no witness (a documented limit).
+#[test]
+fn crossed_block_ridges_match_closed_form() {
+    let mut worst = Errors::default();
+    let mut rng = Rng(97);
+    for gap in [0.05, 0.001, 1e-5, 0.0, 0.5] {
+        let scene = crossed_ridges(gap, rng.range(-3.0, 3.0)).moved(&rng.motion());
+        for scene in [scene.clone(), scene.swapped()] {
+            let (report, errors) = check_brep_scene(&scene, DISTANCE_TOLERANCE, POINT_TOLERANCE);
+            let c = &report.contacts[0];
+            assert_eq!(kind(&c.location_a), On::Edge, "{}: {c:?}", scene.name);
+            assert_eq!(kind(&c.location_b), On::Edge, "{}: {c:?}", scene.name);
+            worst = worst.max(errors);
+        }
+    }
+    println!("crossed_ridges: worst errors {worst:?}");
 }
