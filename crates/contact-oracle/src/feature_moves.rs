@@ -69,23 +69,8 @@ pub(crate) enum TrimStep {
     Cut(Pair),
     /// The step leaves a trim right where it starts (the point is on the boundary and the
     /// step points out): the start with that point (A's when the flag is true) held on the
-    /// boundary's edge, a move to take without a step where the objective does not descend
-    /// into the face ([`slope_into_face`]).
+    /// boundary's edge, a move to take without a step unless [`stays_in_face`].
     Hold(Pair, bool),
-}
-
-/// The slope of an objective with gradient `rate` (world frame) from a point held on an edge
-/// into the face of the edge's use it holds (per unit length, along the face's inward
-/// direction across the edge); `None` off an edge or where that direction is undefined.
-pub(crate) fn slope_into_face(solid: &PosedSolid, held: Held, rate: DVec3) -> Option<f64> {
-    let Held::Edge {
-        edge, t, use_index, ..
-    } = held
-    else {
-        return None;
-    };
-    let use_ = solid.solid.edge(edge).uses[use_index];
-    solid.inward(&use_, t).map(|w| rate.dot(w))
 }
 
 /// The step from `p` to `q` (same features, parameters not yet normalised) checked against
@@ -189,7 +174,7 @@ pub(crate) fn side_edge_crossed(solid: &PosedSolid, face: FaceId, raw: [f64; 2])
 /// face without trim inside the rectangle of the domain.
 fn in_region(solid: &PosedSolid, face: FaceId, uv: DVec2) -> bool {
     match solid.trim(face) {
-        Some(trim) => trim.contains(uv, 0.0),
+        Some(_) => solid.contains(face, uv.to_array(), 0.0),
         None => (0..2).all(|i| {
             let r = solid.range(face, i);
             r.periodic || (uv[i] >= r.min && uv[i] <= r.max)
@@ -286,6 +271,58 @@ fn leave_edge(
     Some(q)
 }
 
+/// The steepest descent of an objective with gradient `rate` (world frame) at (u, v) of
+/// `face`, if it enters the face's region: its slope (per unit length) and the point a probe
+/// step (1e-7 of the face's (u, v) extent) along it.
+fn descent_into_face(
+    solid: &PosedSolid,
+    face: FaceId,
+    uv: [f64; 2],
+    rate: DVec3,
+) -> Option<(f64, [f64; 2])> {
+    let s = solid.eval(face, uv[0], uv[1]);
+    let g = DVec2::new(rate.dot(s.du), rate.dot(s.dv));
+    let (guu, guv, gvv) = (s.du.dot(s.du), s.du.dot(s.dv), s.dv.dot(s.dv));
+    let det = guu * gvv - guv * guv;
+    // Also refuses a NaN determinant.
+    if det.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let d = -DVec2::new(gvv * g.x - guv * g.y, guu * g.y - guv * g.x) / det;
+    let unit = d.try_normalize()?;
+    let probe = DVec2::from(uv) + unit * PROBE * extent(solid, face);
+    if !in_region(solid, face, probe) {
+        return None;
+    }
+    let w = (s.du * d.x + s.dv * d.y).try_normalize()?;
+    Some((rate.dot(w), probe.to_array()))
+}
+
+/// Whether a point held on an edge (by [`TrimStep::Hold`]) should stay free on the face
+/// instead, under an objective with gradient `rate`: at an interior point of the edge, when
+/// the objective descends across it into the face (slope below −`tolerance`, as [`leave`]
+/// releases it); at an end of the edge (a corner of the face, where the direction across the
+/// edge need not enter the face), when its steepest descent enters the face.
+pub(crate) fn stays_in_face(solid: &PosedSolid, held: Held, rate: DVec3, tolerance: f64) -> bool {
+    let Held::Edge {
+        edge, t, use_index, ..
+    } = held
+    else {
+        return false;
+    };
+    let range = solid.solid.edge(edge).curve.domain();
+    let use_ = solid.solid.edge(edge).uses[use_index];
+    let at_end = !range.periodic && (t <= range.min || t >= range.max);
+    if at_end {
+        let uv = solid.use_params(&use_, t);
+        descent_into_face(solid, use_.face, uv, rate).is_some_and(|(s, _)| s < -tolerance)
+    } else {
+        solid
+            .inward(&use_, t)
+            .is_some_and(|w| rate.dot(w) < -tolerance)
+    }
+}
+
 /// The moves off a vertex (see [`leave`]).
 fn leave_vertex(
     solid: &PosedSolid,
@@ -316,29 +353,13 @@ fn leave_vertex(
         );
         // Into a face: its steepest descent direction at the corner, if it points into the
         // face's region (otherwise the best direction into the face runs along one of the
-        // edges that bound it there, already considered).
+        // edges that bound it there, already considered). The point enters the face a probe
+        // step along it, so that the next step starts off the boundary.
         for use_ in &uses {
             let uv = solid.use_params(use_, t);
-            let s = solid.eval(use_.face, uv[0], uv[1]);
-            let g = DVec2::new(rate.dot(s.du), rate.dot(s.dv));
-            let (guu, guv, gvv) = (s.du.dot(s.du), s.du.dot(s.dv), s.dv.dot(s.dv));
-            let det = guu * gvv - guv * guv;
-            // Also skips a NaN determinant.
-            if det.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-                continue;
+            if let Some((slope, probe)) = descent_into_face(solid, use_.face, uv, rate) {
+                consider(slope, use_.face, probe, Held::Face);
             }
-            let d = -DVec2::new(gvv * g.x - guv * g.y, guu * g.y - guv * g.x) / det;
-            let Some(unit) = d.try_normalize() else {
-                continue;
-            };
-            let probe = DVec2::from(uv) + unit * PROBE * extent(solid, use_.face);
-            if !in_region(solid, use_.face, probe) {
-                continue;
-            }
-            let Some(w) = (s.du * d.x + s.dv * d.y).try_normalize() else {
-                continue;
-            };
-            consider(rate.dot(w), use_.face, uv, Held::Face);
         }
     }
     let (slope, face, uv, held) = best?;

@@ -265,10 +265,10 @@ pub(crate) fn descend(
                         TrimStep::Hold(q, _) => {
                             // Held on the edge unless φ descends into the face (then the
                             // step is refused and damped towards the gradient).
-                            let into = x
-                                .normal_b
-                                .and_then(|nb| feature_moves::slope_into_face(a, q.held_a, nb));
-                            let hold = switches < MAX_SWITCHES && into.is_none_or(|s| s >= -ANGLE);
+                            let stay = x.normal_b.is_some_and(|nb| {
+                                feature_moves::stays_in_face(a, q.held_a, nb, ANGLE)
+                            });
+                            let hold = switches < MAX_SWITCHES && !stay;
                             let held = hold
                                 .then(|| phi(a, b, polish::normalize(a, b, q), limits))
                                 .flatten();

@@ -568,9 +568,10 @@ pub(crate) fn minimise(
                 // the point exactly where it does): otherwise the step is refused and damped
                 // towards the gradient, which points in.
                 let rate = if on_a { e.r } else { -e.r };
-                let slope =
-                    feature_moves::slope_into_face(if on_a { a } else { b }, q.side(on_a).2, rate);
-                if slope.is_some_and(|s| s < -limits.tolerance) || switches >= MAX_SWITCHES {
+                let solid = if on_a { a } else { b };
+                let stay =
+                    feature_moves::stays_in_face(solid, q.side(on_a).2, rate, limits.tolerance);
+                if stay || switches >= MAX_SWITCHES {
                     mu *= 8.0;
                 } else {
                     p = normalize(a, b, q);

@@ -123,10 +123,15 @@ impl<'a> PosedSolid<'a> {
     /// [`TRIM_TOLERANCE`]); a face without trim is its whole rectangle, which
     /// [`PosedSolid::normalize`] keeps every point in.
     pub fn inside(&self, face: FaceId, uv: [f64; 2]) -> bool {
+        let tolerance = TRIM_TOLERANCE * self.trim_extent(face);
+        self.contains(face, uv, tolerance)
+    }
+
+    /// Whether (u, v) lies in `face`'s trimmed region, the boundary included within
+    /// `tolerance` (parameter units); always for a face without trim.
+    pub fn contains(&self, face: FaceId, uv: [f64; 2], tolerance: f64) -> bool {
         match (self.trim(face), &self.grids[face.0 as usize]) {
-            (Some(trim), Some(grid)) => {
-                grid.contains(trim, DVec2::from(uv), TRIM_TOLERANCE * grid.extent)
-            }
+            (Some(trim), Some(grid)) => grid.contains(trim, DVec2::from(uv), tolerance),
             _ => true,
         }
     }
@@ -138,7 +143,7 @@ impl<'a> PosedSolid<'a> {
         match self.trim(face) {
             Some(trim) => {
                 let p = DVec2::from(uv);
-                trim.contains(p, 0.0)
+                self.contains(face, uv, 0.0)
                     && trim
                         .nearest(p)
                         .is_some_and(|n| n.distance > 1e-9 * self.trim_extent(face))
