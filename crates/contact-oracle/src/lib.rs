@@ -9,9 +9,10 @@
 //!
 //! 1. Sample every face on a (u, v) grid with world spacing about [`OracleOptions::spacing`]
 //!    (boundary rows included), only near the other solid's bounding box (`sampling`). A
-//!    trimmed face is gridded over its trim's box and keeps the samples inside the trim; the
-//!    edges that run along no rectangle side are sampled on their own curves, their end
-//!    vertices (corners) included.
+//!    trimmed face is gridded over its trim's box and keeps the samples inside the trim (a
+//!    grid of cells classified once answers away from the boundary, `trim_grid`; near it the
+//!    exact p-curves decide, a corner by its sector); the edges that run along no rectangle
+//!    side are sampled on their own curves, their end vertices (corners) included.
 //! 2. For each sample the nearest sample of the other solid (own kd-tree); samples whose
 //!    nearest distance is a discrete local minimum within 1.5 spacings are candidates, from
 //!    both sides (`local_minima`).
@@ -49,11 +50,13 @@
 //!
 //! Known limits: two minima closer than about 1.5 spacings can merge into one; a penetration
 //! witness on an edge between two faces without trims (the ridges of solids of revolution)
-//! is not reported (an apex is: it is a pole of its face); a touch at distance 0 between a
+//! is not reported (an apex is: it is a pole of its face); nor is one where an edge of each
+//! solid pokes into the other (two ridges crossing: either edge's signed distance to the other
+//! solid has a kink, not a stationary point, at its deepest); a touch at distance 0 between a
 //! vertex and an edge or vertex counts as a crossing; the cones of edges and corners are
-//! read from the adjacent faces' tangent directions, exact for convex edges and corners whose
-//! faces are less than 180° apart; a non-isolated minimum (a circle or segment of equal
-//! distance) yields an arbitrary set of points on it.
+//! read from the adjacent faces' tangent directions (at a corner from its edges), exact for
+//! convex edges and corners whose faces are less than 180° apart; a non-isolated minimum (a
+//! circle or segment of equal distance) yields an arbitrary set of points on it.
 
 // Index loops mirror the matrix notation of the small dense systems (H_ij, g_k).
 #![allow(clippy::needless_range_loop)]
