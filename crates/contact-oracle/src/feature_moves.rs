@@ -98,7 +98,7 @@ pub(crate) fn cut_at_trims(
         };
         let start = trim.unwrap(DVec2::from(from));
         let step = DVec2::from(to) - DVec2::from(from);
-        let mut first: f64 = 1.0;
+        let mut first = f64::INFINITY;
         for l in &trim.loops {
             for (p, q) in l.segments() {
                 // start + s step = p + w (q − p), s and w in [0, 1].
@@ -115,7 +115,7 @@ pub(crate) fn cut_at_trims(
             }
         }
         // Within rounding of the start (or no crossing found): the point is on the boundary.
-        let at_start = first >= 1.0 || first <= 1e-12;
+        let at_start = first.is_infinite() || first <= 1e-12;
         let first = if at_start { 0.0 } else { first };
         let crossing = (start + first * step).to_array();
         if let Some((uv, held)) = onto_boundary(solid, face, crossing) {
