@@ -1,5 +1,6 @@
 //! Project automation behind `cargo xtask`: fixture generation.
 
+pub mod general_objects;
 pub mod obj;
 pub mod paper_objects;
 pub mod report;
@@ -8,7 +9,7 @@ pub mod scenes;
 pub mod settle;
 pub mod soak;
 
-use geom_param::MeshOptions;
+use geom_param::{MeshOptions, ObjectFile};
 use std::path::{Path, PathBuf};
 
 /// Chordal tolerance of the meshes written as OBJ files (mm).
@@ -17,15 +18,23 @@ pub const FIXTURE_OBJ_TOLERANCE: f64 = 0.1;
 /// Every generated fixture file: path relative to the workspace root, and contents.
 ///
 /// # Errors
-/// A message if a paper object fails to build (a bug in its definition).
+/// A message if a fixture object fails to build (a bug in its definition).
 pub fn generate_fixtures() -> Result<Vec<(PathBuf, String)>, String> {
     let mut files = Vec::new();
     let options = MeshOptions {
         chordal_tolerance: FIXTURE_OBJ_TOLERANCE,
     };
-    let objects = paper_objects::paper_objects();
+    let objects: Vec<ObjectFile> = paper_objects::paper_objects()
+        .into_iter()
+        .map(ObjectFile::Revolved)
+        .chain(
+            general_objects::general_objects()
+                .into_iter()
+                .map(ObjectFile::General),
+        )
+        .collect();
     for description in &objects {
-        let name = description.name.clone();
+        let name = description.name().to_string();
         let model = description
             .build(&options)
             .map_err(|e| format!("{name}: {e}"))?;

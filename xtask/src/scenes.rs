@@ -11,7 +11,7 @@
 
 use crate::settle::{Settler, TiltSpec, translated};
 use contact_pipeline::{ContactOptions, ContactPipeline};
-use geom_param::{DPose3, DQuat, DVec3, ObjectDescription};
+use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectFile};
 use serde_json::{Value, json};
 
 /// Gaps of the first and second contact (mm), inside the default band [-0.001, 0.1].
@@ -85,6 +85,42 @@ fn specs() -> Vec<SettleSpec> {
             tilt_axis: DVec3::NEG_Y,
             max_tilt: 1.5,
         },
+        // General solids. The pencil at 45° lowered eraser first onto the rounded box's top
+        // face, then leaning over onto the box's rounded edge (a fillet cylinder).
+        SettleSpec {
+            pair: "pencil-rounded-box",
+            a: "rounded-box",
+            b: "pencil",
+            rotation: DQuat::from_rotation_y(0.25 * std::f64::consts::PI),
+            start: DVec3::new(10.0, 3.0, 40.0),
+            approach: DVec3::NEG_Z,
+            tilt_axis: DVec3::Y,
+            max_tilt: 1.2,
+        },
+        // The pencil slightly slanted through the tube's bore: against one rim of the bore,
+        // then tipping against the opposite wall at the other end (concave bore, trimmed caps).
+        SettleSpec {
+            pair: "pencil-tube",
+            a: "tube",
+            b: "pencil",
+            rotation: DQuat::from_rotation_y(0.02),
+            start: DVec3::new(-1.6, 0.0, -50.0),
+            approach: DVec3::X,
+            tilt_axis: DVec3::Y,
+            max_tilt: 0.3,
+        },
+        // The paperweight upside down, its ball against the bracket's vertical leg, then
+        // turning about that contact into the corner onto the horizontal leg.
+        SettleSpec {
+            pair: "paperweight-bracket",
+            a: "bracket",
+            b: "paperweight",
+            rotation: DQuat::from_rotation_x(std::f64::consts::PI),
+            start: DVec3::new(40.0, 42.0, 51.1245154965971),
+            approach: DVec3::new(-1.0, -1.0, 0.0).normalize(),
+            tilt_axis: DVec3::NEG_Z,
+            max_tilt: 1.2,
+        },
     ]
 }
 
@@ -118,23 +154,24 @@ fn scene_json(spec: &SettleSpec, pose_b: &DPose3, what: &str, options: &ContactO
 ///
 /// # Errors
 /// A message when a pair cannot be settled.
-pub fn generate_scenes(objects: &[ObjectDescription]) -> Result<Vec<(String, String)>, String> {
+pub fn generate_scenes(objects: &[ObjectFile]) -> Result<Vec<(String, String)>, String> {
     let options = ContactOptions::default();
+    let mesh = MeshOptions {
+        chordal_tolerance: options.chordal_tolerance,
+    };
     let find = |name: &str| {
         objects
             .iter()
-            .find(|o| o.name == name)
-            .ok_or(format!("no object {name}"))
+            .find(|o| o.name() == name)
+            .ok_or(format!("no object {name}"))?
+            .build(&mesh)
+            .map_err(|e| format!("{name}: {e}"))
     };
     let mut files = Vec::new();
     for spec in specs() {
         let pipeline = ContactPipeline::new(options).map_err(|e| e.to_string())?;
-        let a = pipeline
-            .prepare_description(find(spec.a)?)
-            .map_err(|e| e.to_string())?;
-        let b = pipeline
-            .prepare_description(find(spec.b)?)
-            .map_err(|e| e.to_string())?;
+        let a = pipeline.prepare(find(spec.a)?);
+        let b = pipeline.prepare(find(spec.b)?);
         let mut settler = Settler::new(&pipeline, &a, &b);
         let start = DPose3 {
             rotation: spec.rotation,

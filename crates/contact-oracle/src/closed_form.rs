@@ -6,16 +6,17 @@
 //! tests need not rely on axis-aligned poses.
 //!
 //! [`ClosedFormScene`]s pair two solids of revolution (profiles); [`BrepScene`]s pair a sphere
-//! with a solid built face by face ([`brep`]: a block with trimmed planar faces, straight edges
-//! and corners, or a plate with a cylindrical hole), so that contacts on a face, on an edge
-//! (the distance to a line), at a corner (the distance to a point) and inside a hole (the
-//! distance to a cylinder) have exact answers.
+//! with a general solid ([`brep`]: a block with trimmed planar faces, straight edges and
+//! corners; geom-param's extrusions: a plate with a cylindrical hole, an L-shaped bracket), so
+//! that contacts on a face, on an edge (the distance to a line), at a corner (the distance to
+//! a point), inside a hole (the distance to a cylinder) and in a concave corner have exact
+//! answers.
 
-mod analytic;
 pub mod brep;
 
 use geom_param::{
-    DPose3, DQuat, DVec2, DVec3, LoadError, MeshOptions, ObjectDescription, SegmentSpec, Solid,
+    BuildError, DPose3, DQuat, DVec2, DVec3, LoadError, MeshOptions, ObjectDescription,
+    PlanarProfile, PlanarSegment, SegmentSpec, Solid, extrude,
 };
 
 /// One exact contact, world frame: point_b = point_a + distance · normal, normal = A's outward
@@ -430,32 +431,50 @@ pub enum SceneObject {
         /// Side lengths along x, y, z (mm).
         size: DVec3,
     },
-    /// [`brep::holed_plate`]: a square plate centred at the origin with a hole along z.
-    HoledPlate {
-        /// Side of the square (mm).
-        width: f64,
-        /// Thickness along z (mm).
-        thickness: f64,
-        /// Radius of the hole (mm).
-        radius: f64,
+    /// geom-param's [`extrude`] of a planar profile (xy plane) from z0 to z1 (mm).
+    Extrusion {
+        /// The profile, holes included.
+        profile: PlanarProfile,
+        /// Bottom (mm).
+        z0: f64,
+        /// Top (mm).
+        z1: f64,
     },
+}
+
+/// Why a closed-form scene's object could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// A solid of revolution's profile is invalid.
+    #[error(transparent)]
+    Profile(#[from] LoadError),
+    /// A general solid could not be built or fails validation.
+    #[error(transparent)]
+    Build(#[from] BuildError),
 }
 
 impl SceneObject {
     /// The exact solid.
     ///
     /// # Errors
-    /// A [`LoadError`] if a profile is invalid (the builders' tests check they are not).
-    pub fn solid(&self) -> Result<Solid, LoadError> {
-        Ok(match *self {
-            Self::Profile(ref d) => build(d)?,
-            Self::Block { size } => brep::block(size),
-            Self::HoledPlate {
-                width,
-                thickness,
-                radius,
-            } => brep::holed_plate(width, thickness, radius),
+    /// A [`SceneError`] if a profile or a dimension is invalid (the builders' tests check
+    /// they are not).
+    pub fn solid(&self) -> Result<Solid, SceneError> {
+        Ok(match self {
+            Self::Profile(d) => build(d)?,
+            Self::Block { size } => brep::block(*size)?,
+            Self::Extrusion { profile, z0, z1 } => extrude(profile, *z0, *z1)?,
         })
+    }
+}
+
+/// The plate of [`sphere_in_hole`] and [`sphere_on_hole_rim`]: [`brep::holed_plate`] as a
+/// scene object.
+fn holed_plate(width: f64, thickness: f64, radius: f64) -> SceneObject {
+    SceneObject::Extrusion {
+        profile: brep::holed_square(width, radius),
+        z0: -0.5 * thickness,
+        z1: 0.5 * thickness,
     }
 }
 
@@ -516,8 +535,8 @@ impl BrepScene {
     /// The exact solids of A and B.
     ///
     /// # Errors
-    /// A [`LoadError`] if a profile is invalid.
-    pub fn solids(&self) -> Result<(Solid, Solid), LoadError> {
+    /// A [`SceneError`] if an object cannot be built.
+    pub fn solids(&self) -> Result<(Solid, Solid), SceneError> {
         Ok((self.a.solid()?, self.b.solid()?))
     }
 }
@@ -649,11 +668,7 @@ pub fn sphere_in_hole(
         ),
         a: SceneObject::Profile(sphere(r)),
         pose_a: pose(spin, centre),
-        b: SceneObject::HoledPlate {
-            width: 4.0 * radius,
-            thickness,
-            radius,
-        },
+        b: holed_plate(4.0 * radius, thickness, radius),
         pose_b: DPose3::IDENTITY,
         expected: vec![ExpectedContact {
             point_a,
@@ -691,11 +706,7 @@ pub fn sphere_on_hole_rim(
         ),
         a: SceneObject::Profile(sphere(r)),
         pose_a: pose(spin, centre),
-        b: SceneObject::HoledPlate {
-            width: 4.0 * radius,
-            thickness,
-            radius,
-        },
+        b: holed_plate(4.0 * radius, thickness, radius),
         pose_b: DPose3::IDENTITY,
         expected: vec![ExpectedContact {
             point_a: centre - away * r,
@@ -703,5 +714,56 @@ pub fn sphere_on_hole_rim(
             distance: gap,
             normal: -away,
         }],
+    }
+}
+
+/// A sphere (A, radius `r`, spun by `spin`) nestled in the concave corner of an L-shaped
+/// bracket (B: geom-param's extrusion of the L with outer corner at the origin, arms 4 mm
+/// thick and 2 r + 10 long along x and y, from z = −(r + 3) to r + 3). The inner faces are the
+/// planes y = 4 (for x >= 4) and x = 4 (for y >= 4), meeting in a concave edge along z; the
+/// centre lies at (4 + r + gap, 4 + r + gap, `height`). Two contacts, one on each inner face,
+/// each at distance `gap`; the concave edge (√2 (r + gap) − r from the sphere) is no minimum.
+/// Requires |height| <= 2.
+#[must_use]
+pub fn sphere_in_l_corner(r: f64, gap: f64, height: f64, spin: DQuat) -> BrepScene {
+    let (t, a, h) = (4.0, 2.0 * r + 10.0, r + 3.0);
+    let line = |from: [f64; 2], to: [f64; 2]| PlanarSegment::Line {
+        from: DVec2::from(from),
+        to: DVec2::from(to),
+    };
+    let profile = PlanarProfile {
+        outer: vec![
+            line([0.0, 0.0], [a, 0.0]),
+            line([a, 0.0], [a, t]),
+            line([a, t], [t, t]),
+            line([t, t], [t, a]),
+            line([t, a], [0.0, a]),
+            line([0.0, a], [0.0, 0.0]),
+        ],
+        holes: Vec::new(),
+    };
+    let centre = DVec3::new(t + r + gap, t + r + gap, height);
+    let expected = [DVec3::X, DVec3::Y]
+        .map(|axis| {
+            let point_a = centre - axis * r;
+            ExpectedContact {
+                point_a,
+                point_b: point_a - axis * gap,
+                distance: gap,
+                normal: -axis,
+            }
+        })
+        .to_vec();
+    BrepScene {
+        name: format!("sphere_in_l_corner(r {r}, gap {gap}, height {height})"),
+        a: SceneObject::Profile(sphere(r)),
+        pose_a: pose(spin, centre),
+        b: SceneObject::Extrusion {
+            profile,
+            z0: -h,
+            z1: h,
+        },
+        pose_b: DPose3::IDENTITY,
+        expected,
     }
 }

@@ -13,7 +13,7 @@ use crate::held::Held;
 use crate::linalg::N;
 use crate::polish::Pair;
 use crate::posed::PosedSolid;
-use geom_param::{Boundary, EdgeOn, FaceId, ParamSide};
+use geom_param::{EdgeOn, FaceId, ParamSide};
 use glam::{DVec2, DVec3};
 
 /// Moves between features before a polish gives up (guards against cycling).
@@ -154,18 +154,13 @@ pub(crate) fn side_edge_crossed(solid: &PosedSolid, face: FaceId, raw: [f64; 2])
             (_, true) => ParamSide::VMin,
             (_, false) => ParamSide::VMax,
         };
-        let Boundary::Edge(edge) = solid.boundary(face, side) else {
+        let Some(held @ Held::Edge { edge, .. }) = solid.edge_on_side(face, side, clamped) else {
             continue;
         };
         let uses = solid.solid.edge(edge).uses;
-        if !uses.iter().any(|u| matches!(u.on, EdgeOn::Trim { .. })) {
-            continue;
+        if uses.iter().any(|u| matches!(u.on, EdgeOn::Trim { .. })) {
+            return Some(held);
         }
-        return Some(Held::Edge {
-            edge,
-            t: clamped[1 - index],
-            use_index: solid.use_on(edge, face),
-        });
     }
     None
 }

@@ -220,14 +220,7 @@ fn on_side_edge(solid: &PosedSolid, face: FaceId, uv: [f64; 2], index: usize) ->
         .sides_at(face, uv, 0.0)
         .into_iter()
         .find(|&side| solid.side_param(face, side).index == index)?;
-    let Boundary::Edge(edge) = solid.boundary(face, side) else {
-        return None;
-    };
-    Some(Held::Edge {
-        edge,
-        t: uv[1 - index],
-        use_index: solid.use_on(edge, face),
-    })
+    solid.edge_on_side(face, side, uv)
 }
 
 /// A minimum that settled next to a pole or apex (where the parametrisation is polar and LM

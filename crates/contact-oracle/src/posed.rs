@@ -5,8 +5,8 @@
 use crate::held::Held;
 use crate::trim_grid::TrimGrid;
 use geom_param::{
-    Boundary, CurvePoint, DPose3, EdgeId, EdgeOn, EdgeUse, FaceId, FeatureLocation, ParamSide,
-    Solid, SurfacePoint, Trim, VertexId,
+    Boundary, CurvePoint, DPose3, EdgeId, EdgeUse, FaceId, FeatureLocation, ParamSide, Solid,
+    SurfacePoint, Trim, VertexId,
 };
 use glam::{DMat3, DVec2, DVec3};
 
@@ -263,9 +263,10 @@ impl<'a> PosedSolid<'a> {
         let mut edges = Vec::new();
         for side in self.sides_at(face, uv, 0.0) {
             match self.boundary(face, side) {
-                Boundary::Edge(edge) => {
-                    let running = 1 - self.side_param(face, side).index;
-                    edges.push((edge, uv[running]));
+                Boundary::Edge(_) => {
+                    if let Some(Held::Edge { edge, t, .. }) = self.edge_on_side(face, side, uv) {
+                        edges.push((edge, t));
+                    }
                 }
                 Boundary::Vertex(id) if self.normal(face, uv[0], uv[1]).is_none() => {
                     return FeatureLocation::Vertex { id };
@@ -284,6 +285,25 @@ impl<'a> PosedSolid<'a> {
             }
             _ => held.location(face, uv),
         }
+    }
+
+    /// The point (u, v) of a face without trim taken on the edge along `side` (t from the
+    /// running parameter through the side's use, [`geom_param::EdgeOn::edge_param`]), if an edge bounds
+    /// that side.
+    pub fn edge_on_side(&self, face: FaceId, side: ParamSide, uv: [f64; 2]) -> Option<Held> {
+        let Boundary::Edge(edge) = self.boundary(face, side) else {
+            return None;
+        };
+        let uses = self.solid.edge(edge).uses;
+        let use_index = uses
+            .iter()
+            .position(|u| u.face == face && u.on.side() == Some(side))?;
+        let running = uv[1 - self.side_param(face, side).index];
+        Some(Held::Edge {
+            edge,
+            t: uses[use_index].on.edge_param(running),
+            use_index,
+        })
     }
 
     /// World-frame unit outward normal, `None` where the face has no tangent plane.
@@ -363,9 +383,10 @@ impl<'a> PosedSolid<'a> {
     }
 
     /// The same point seen from the face across the edge on `side`: (neighbour face, its
-    /// parameters, the (u, v) direction into it). The edge parameter t equals the face
-    /// parameter running along the side (geom-param's convention); the neighbour's parameters
-    /// are its use's p-curve (or side) at that t, and the direction its use's inward one.
+    /// parameters, the (u, v) direction into it). The edge parameter t is the face parameter
+    /// running along the side, or its negative ([`geom_param::EdgeOn::edge_param`]); the neighbour's
+    /// parameters are its use's p-curve (or side) at that t, and the direction its use's
+    /// inward one.
     pub fn across(
         &self,
         face: FaceId,
@@ -376,13 +397,14 @@ impl<'a> PosedSolid<'a> {
             return None;
         };
         let uses = self.solid.edge(edge).uses;
-        let other = if uses[0].face == face && uses[0].on == EdgeOn::Side(side) {
-            uses[1]
+        let (this, other) = if uses[0].face == face && uses[0].on.side() == Some(side) {
+            (uses[0], uses[1])
         } else {
-            uses[0]
+            (uses[1], uses[0])
         };
         let here = self.side_param(face, side);
-        let t = uv[1 - here.index];
+        // Running parameter here -> edge parameter.
+        let t = this.on.edge_param(uv[1 - here.index]);
         Some((
             other.face,
             self.use_params(&other, t),

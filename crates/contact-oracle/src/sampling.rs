@@ -14,7 +14,7 @@
 use crate::kdtree::KdTree;
 use crate::posed::PosedSolid;
 use crate::trim_grid::{Region, classify};
-use geom_param::{EdgeId, EdgeOn, FaceId, ParamRange, Solid};
+use geom_param::{EdgeId, FaceId, ParamRange, Solid};
 use glam::{DVec2, DVec3};
 
 /// Coarse patches are about this many fine spacings across.
@@ -383,7 +383,7 @@ fn edge_plan(
     let solid = posed.solid;
     let mut out = Vec::new();
     for (e, edge) in solid.edges.iter().enumerate() {
-        if edge.uses.iter().any(|u| matches!(u.on, EdgeOn::Side(_))) {
+        if edge.uses.iter().any(|u| u.on.side().is_some()) {
             continue;
         }
         let id = EdgeId(e as u32);
@@ -471,7 +471,7 @@ mod tests {
     fn block_samples_stay_in_the_faces_and_cover_edges_and_corners() {
         let half = DVec3::new(10.0, 7.0, 5.0);
         let spacing = 0.5;
-        let all = samples(&block(2.0 * half), spacing);
+        let all = samples(&block(2.0 * half).expect("builds"), spacing);
         let eps = 1e-9;
         for s in &all {
             let q = s.point.abs();
@@ -534,7 +534,7 @@ mod tests {
             DVec3::new(3.0, 3.0, 8.0),
         ];
         let spacing = 0.4;
-        let all = samples(&tetrahedron(p), spacing);
+        let all = samples(&tetrahedron(p).expect("builds"), spacing);
         let eps = 1e-9;
         let barycentric = |q: DVec3, [a, b, c]: [DVec3; 3]| {
             let n = (b - a).cross(c - a);
@@ -587,7 +587,7 @@ mod tests {
     #[test]
     fn plate_samples_skip_the_hole() {
         let (radius, thickness) = (6.0, 8.0);
-        let all = samples(&holed_plate(40.0, thickness, radius), 0.5);
+        let all = samples(&holed_plate(40.0, thickness, radius).expect("builds"), 0.5);
         let eps = 1e-9;
         let mut rim = 0;
         for s in &all {

@@ -186,7 +186,7 @@ mod tests {
             DVec3::new(-2.0, 11.0, -3.0),
             DVec3::new(1.0, 1.0, 10.0),
         ];
-        let solid = tetrahedron(p);
+        let solid = tetrahedron(p).expect("builds");
         let mut acute_misread_by_tangent = 0;
         for face in &solid.faces {
             let trim = face.trim.as_ref().expect("trimmed");
@@ -222,19 +222,29 @@ mod tests {
     /// lattice, boundary cells included.
     #[test]
     fn grid_containment_matches_the_closed_form() {
-        let solid = holed_plate(40.0, 8.0, 6.0);
-        let trim = solid.faces[1].trim.as_ref().expect("trimmed");
+        let solid = holed_plate(40.0, 8.0, 6.0).expect("builds");
+        // The top cap: the trimmed face above z = 0; its (u, v) is (x, y).
+        let trim = solid
+            .faces
+            .iter()
+            .filter_map(|f| f.trim.as_ref().map(|t| (f, t)))
+            .find(|(f, t)| {
+                let (lo, hi) = t.bounds();
+                let mid = 0.5 * (lo + hi);
+                f.surface.eval(mid.x, mid.y).point.z > 0.0
+            })
+            .map(|(_, t)| t)
+            .expect("a top cap");
         let grid = TrimGrid::new(trim);
         let mut boundary_cells = 0;
         for cell in &grid.cells {
             boundary_cells += usize::from(*cell == Region::Boundary);
         }
         assert!(boundary_cells > 0 && boundary_cells < CELLS * CELLS / 2);
-        // The top face's (u, v) is (x + 20, y + 20).
         for i in 0..=200 {
             for j in 0..=200 {
-                let uv = DVec2::new(-1.0 + 0.21 * f64::from(i), -1.0 + 0.21 * f64::from(j));
-                let (x, y) = (uv.x - 20.0, uv.y - 20.0);
+                let uv = DVec2::new(-21.0 + 0.21 * f64::from(i), -21.0 + 0.21 * f64::from(j));
+                let (x, y) = (uv.x, uv.y);
                 let rho = x.hypot(y);
                 let truth = rho > 6.0 && x.abs() < 20.0 && y.abs() < 20.0;
                 let clear = (rho - 6.0).abs() > 1e-9

@@ -11,8 +11,8 @@ use contact_oracle::ExpectedContact;
 use contact_oracle::OracleState;
 use contact_oracle::closed_form::SceneObject;
 use contact_oracle::closed_form::{
-    BrepScene, sphere_in_hole, sphere_near_block_corner, sphere_near_block_edge,
-    sphere_on_block_face, sphere_on_hole_rim,
+    BrepScene, sphere_in_hole, sphere_in_l_corner, sphere_near_block_corner,
+    sphere_near_block_edge, sphere_on_block_face, sphere_on_hole_rim,
 };
 use geom_param::{DPose3, DQuat, DVec2, DVec3, FeatureLocation};
 use support::{Errors, Rng, check_brep_scene};
@@ -141,6 +141,15 @@ fn sphere_inside_a_hole_matches_closed_form() {
         let azimuth = rng.range(0.0, std::f64::consts::TAU);
         let height = rng.range(-1.0, 1.0);
         sphere_in_hole(4.0, 6.0, 12.0, gap, height, azimuth, rng.rotation())
+    });
+}
+
+/// Two contacts at once, one on each face of a concave edge (which is itself no minimum).
+#[test]
+fn sphere_in_a_concave_corner_matches_closed_form() {
+    run("sphere_in_l_corner", &GAPS, 1, On::Face, |gap, rng| {
+        let height = rng.range(-2.0, 2.0);
+        sphere_in_l_corner(3.0, gap, height, rng.rotation())
     });
 }
 

@@ -18,7 +18,7 @@ const POINT_TOLERANCE: f64 = 1e-7 * 40.0;
 fn spheres_around_a_block_match_the_clamped_closest_point() {
     let half = DVec3::new(10.0, 7.0, 5.0);
     let r = 4.0;
-    let box_solid = block(2.0 * half);
+    let box_solid = block(2.0 * half).expect("builds");
     let sphere = SceneObject::Profile(geom_param::ObjectDescription {
         name: "sphere".into(),
         note: None,
@@ -137,7 +137,7 @@ fn spheres_around_a_tetrahedron_match_the_closest_triangle_point() {
         DVec3::new(1.0, 1.0, 10.0),
     ];
     let r = 4.0;
-    let solid = contact_oracle::closed_form::brep::tetrahedron(p);
+    let solid = contact_oracle::closed_form::brep::tetrahedron(p).expect("builds");
     let sphere = SceneObject::Profile(geom_param::ObjectDescription {
         name: "sphere".into(),
         note: None,

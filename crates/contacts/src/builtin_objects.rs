@@ -1,7 +1,8 @@
-//! The six paper objects, built into the command so that scenes can name them.
+//! The fixture objects (the six paper objects and the general solids), built into the command
+//! so that scenes can name them.
 
 /// (name, object file text) of every built-in object.
-pub const BUILTIN_OBJECTS: [(&str, &str); 6] = [
+pub const BUILTIN_OBJECTS: [(&str, &str); 9] = [
     (
         "paperweight",
         include_str!("../../../fixtures/objects/paperweight.json"),
@@ -17,6 +18,15 @@ pub const BUILTIN_OBJECTS: [(&str, &str); 6] = [
     ),
     ("jar", include_str!("../../../fixtures/objects/jar.json")),
     ("vase", include_str!("../../../fixtures/objects/vase.json")),
+    (
+        "rounded-box",
+        include_str!("../../../fixtures/objects/rounded-box.json"),
+    ),
+    ("tube", include_str!("../../../fixtures/objects/tube.json")),
+    (
+        "bracket",
+        include_str!("../../../fixtures/objects/bracket.json"),
+    ),
 ];
 
 /// The object file text of a built-in object.

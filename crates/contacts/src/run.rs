@@ -3,6 +3,7 @@
 use crate::output::{pair_json, state_name};
 use crate::scene::{Scene, SceneError};
 use contact_pipeline::{ContactPipeline, PairReport, PreparedObject, QueryError, QueryScratch};
+use geom_param::MeshOptions;
 use serde_json::{Value, json};
 use std::path::Path;
 use std::time::Instant;
@@ -44,8 +45,11 @@ fn prepare(scene: Scene) -> Result<PreparedScene, SceneError> {
         .iter()
         .enumerate()
         .map(|(i, o)| {
-            pipeline
-                .prepare_description(&o.description)
+            o.description
+                .build(&MeshOptions {
+                    chordal_tolerance: pipeline.options().chordal_tolerance,
+                })
+                .map(|model| pipeline.prepare(model))
                 .map_err(|source| SceneError::Object {
                     at: format!("objects[{i}] ({})", o.name),
                     source,

@@ -9,12 +9,14 @@
 //!   "options": {"margin": 1.0, "delta1": -0.001, "delta2": 0.1, "chordal_tolerance": 0.05} }
 //! ```
 //! Lengths in mm; rotation a unit quaternion [x, y, z, w]. `object` is a built-in object name,
-//! a path to an object file relative to the scene file, or an inline object with a `profile`.
+//! a path to an object file relative to the scene file, or an inline object (a solid of
+//! revolution with a `profile`, or a general solid such as `{"name": "box", "rounded_box":
+//! {"half_extents": [20, 15, 10], "radius": 3}}`, see `geom_param::SolidDescription`).
 //! `options` and each of its fields may be left out.
 
 use crate::builtin_objects::builtin_object;
 use contact_pipeline::{ContactOptions, OptionsError};
-use geom_param::{DPose3, DQuat, DVec3, LoadError, ObjectDescription};
+use geom_param::{DPose3, DQuat, DVec3, ObjectFile, ObjectFileError};
 use serde_json::{Map, Value};
 use std::path::{Path, PathBuf};
 
@@ -29,8 +31,8 @@ const UNIT_TOLERANCE: f64 = 1e-6;
 pub struct SceneObject {
     /// Its name in the scene.
     pub name: String,
-    /// Its description (profile).
-    pub description: ObjectDescription,
+    /// Its description (a profile, or a general solid's builder).
+    pub description: ObjectFile,
     /// Its pose in the world frame.
     pub pose: DPose3,
 }
@@ -93,7 +95,7 @@ pub enum SceneError {
     },
     /// `object` names no built-in object and no readable file.
     #[error(
-        "{at}: unknown object `{name}` (built-in objects: paperweight, goblet, bowl, pencil, jar, vase; or a path to an object file)"
+        "{at}: unknown object `{name}` (built-in objects: paperweight, goblet, bowl, pencil, jar, vase, rounded-box, tube, bracket; or a path to an object file)"
     )]
     UnknownObject {
         /// Where.
@@ -115,7 +117,7 @@ pub enum SceneError {
         /// Where.
         at: String,
         /// Why.
-        source: LoadError,
+        source: ObjectFileError,
     },
     /// Options that cannot work together.
     #[error("options: {0}")]
@@ -235,11 +237,11 @@ fn scene_object(value: &Value, at: &str, base: &Path) -> Result<SceneObject, Sce
             });
         }
         Some(Value::String(reference)) => load_reference(reference, &object_at, base)?,
-        Some(inline @ Value::Object(_)) => ObjectDescription::from_json_value(inline, &object_at)
+        Some(inline @ Value::Object(_)) => ObjectFile::from_json_value(inline, &object_at)
             .map_err(|source| SceneError::Object {
-            at: object_at.clone(),
-            source,
-        })?,
+                at: object_at.clone(),
+                source,
+            })?,
         Some(_) => {
             return Err(wrong(
                 &object_at,
@@ -258,9 +260,9 @@ fn scene_object(value: &Value, at: &str, base: &Path) -> Result<SceneObject, Sce
     })
 }
 
-fn load_reference(reference: &str, at: &str, base: &Path) -> Result<ObjectDescription, SceneError> {
+fn load_reference(reference: &str, at: &str, base: &Path) -> Result<ObjectFile, SceneError> {
     let parse = |text: &str| {
-        ObjectDescription::from_json(text).map_err(|source| SceneError::Object {
+        ObjectFile::from_json(text).map_err(|source| SceneError::Object {
             at: at.into(),
             source,
         })

@@ -31,7 +31,14 @@ pub(crate) fn settle(body: &Body, loc: Loc) -> Loc {
                 }
                 match face.boundary(side_of(i, w[i] >= range.max)) {
                     Boundary::Edge(e) => {
-                        let t = wrap(&solid.edge(e).curve.domain(), w[1 - i]);
+                        let side = side_of(i, w[i] >= range.max);
+                        let on = solid
+                            .edge(e)
+                            .uses
+                            .iter()
+                            .find(|u| u.face == id && u.on.side() == Some(side))
+                            .map_or(geom_param::EdgeOn::Side(side), |u| u.on);
+                        let t = wrap(&solid.edge(e).curve.domain(), on.edge_param(w[1 - i]));
                         return Some(FeatureLocation::Edge { id: e, t });
                     }
                     Boundary::Vertex(vertex) => {

@@ -1,11 +1,14 @@
-//! Cost of evaluating revolved surfaces: `Surface::eval` (point and first and second
-//! derivatives) and `Surface::principal_curvatures` per segment kind (line, arc, Bezier), over a
-//! fixed set of 1024 seeded (u, v) points. Criterion reports the time per batch of 1024 and the
-//! throughput in evaluations per second.
+//! Cost of evaluating surfaces: `Surface::eval` (point and first and second derivatives) and
+//! `Surface::principal_curvatures` of revolved surfaces per segment kind (line, arc, Bezier),
+//! and `Surface::eval` of the general geometry (a bicubic rational NURBS patch, an analytic
+//! torus, the NURBS torus of A8.1), over a fixed set of 1024 seeded (u, v) points mapped onto
+//! each surface's domain. Criterion reports the time per batch of 1024 (divide by 1024 for ns
+//! per eval) and the throughput in evaluations per second.
 
 use criterion::{BenchmarkId, Criterion, Throughput, black_box};
 use geom_param::{
-    ArcSegment, CubicBezier, DVec2, LineSegment, ProfileSegment, RevolvedSurface, Surface,
+    ArcSegment, CubicBezier, DVec2, DVec3, LineSegment, NurbsCurve, NurbsSurface, ParamRange,
+    Placement, ProfileSegment, RevolvedSurface, Surface, TorusSurface,
 };
 use std::f64::consts::{PI, TAU};
 
@@ -124,11 +127,81 @@ fn bench_curvatures(c: &mut Criterion) {
     group.finish();
 }
 
+/// A bicubic rational patch: 8 × 8 control points on a wavy sheet, clamped uniform knots (5
+/// spans each way), weights in [0.5, 2).
+fn bicubic_patch() -> NurbsSurface {
+    let mut rng = SplitMix64(0xBE4C_0002);
+    let n = 8;
+    let knots: Vec<f64> = (0..n + 4)
+        .map(|i| (i.clamp(3, n) - 3) as f64 / (n - 3) as f64)
+        .collect();
+    let points = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| DVec3::new(10.0 * i as f64, 10.0 * j as f64, 5.0 * rng.unit()))
+                .collect()
+        })
+        .collect();
+    let weights = (0..n)
+        .map(|_| (0..n).map(|_| 0.5 + 1.5 * rng.unit()).collect())
+        .collect();
+    NurbsSurface::new(
+        [3, 3],
+        [knots.clone(), knots],
+        points,
+        weights,
+        [false, false],
+    )
+    .expect("valid patch")
+}
+
+/// The general surfaces, boxed so they share one loop.
+fn general_surfaces() -> [(&'static str, Box<dyn Surface>); 3] {
+    let turn = ParamRange {
+        min: 0.0,
+        max: TAU,
+        periodic: true,
+    };
+    let torus = TorusSurface::new(Placement::IDENTITY, 20.0, 5.0, [turn, turn]).expect("torus");
+    let tube_plane =
+        Placement::new(DVec3::new(20.0, 0.0, 0.0), -DVec3::Y, DVec3::X).expect("meridian plane");
+    let tube = NurbsCurve::circle_arc(&tube_plane, 5.0, 0.0, TAU).expect("tube");
+    let nurbs_torus =
+        NurbsSurface::revolution(&tube, DVec3::ZERO, DVec3::Z, TAU).expect("NURBS torus");
+    [
+        ("nurbs_bicubic_8x8", Box::new(bicubic_patch())),
+        ("torus", Box::new(torus)),
+        ("nurbs_torus", Box::new(nurbs_torus)),
+    ]
+}
+
+fn bench_general_eval(c: &mut Criterion) {
+    let unit: Vec<(f64, f64)> = params().into_iter().map(|(u, v)| (u / TAU, v)).collect();
+    let mut group = c.benchmark_group("general_surface_eval");
+    group.throughput(Throughput::Elements(POINTS as u64));
+    for (kind, surface) in general_surfaces() {
+        let [du, dv] = surface.domain();
+        let points: Vec<(f64, f64)> = unit
+            .iter()
+            .map(|&(a, b)| (du.min + a * du.span(), dv.min + b * dv.span()))
+            .collect();
+        group.bench_with_input(BenchmarkId::new("eval", kind), &surface, |b, s| {
+            b.iter(|| {
+                for &(u, v) in &points {
+                    black_box(s.eval(black_box(u), black_box(v)));
+                }
+            });
+        });
+    }
+    group.finish();
+}
+
 // What `criterion_group!` / `criterion_main!` expand to, written out so that no undocumented
 // public function is generated (the workspace warns on missing docs).
 fn main() {
     let mut c = Criterion::default().configure_from_args();
     bench_eval(&mut c);
     bench_curvatures(&mut c);
+    bench_general_eval(&mut c);
     c.final_summary();
 }

@@ -7,9 +7,13 @@ use crate::revolution::revolve::revolve;
 use crate::tessellation::component_mesh::ComponentMesh;
 use crate::tessellation::convex_hull::ConvexHull;
 use crate::tessellation::revolved_mesher::tessellate;
+use crate::tessellation::solid_mesher::tessellate_solid;
+use crate::tessellation::surface_extent::sampled_extent;
 use crate::topology::components::{ComponentKind, SurfaceComponent, partition};
+use crate::topology::convexity::classify_convexity;
 use crate::topology::feature::{ComponentId, FaceId};
 use crate::topology::solid::Solid;
+use crate::topology::validate::{TopologyError, validate};
 
 /// Smallest chordal tolerance relative to the object's size (largest coordinate). A 100 mm
 /// object can be meshed to 2 µm; finer meshes (hundreds of thousands of vertices) make the
@@ -47,6 +51,20 @@ pub enum ModelError {
         /// The object's size (largest coordinate, mm).
         scale: f64,
     },
+    /// A face of a general solid cannot be meshed: its surface or an edge on it evaluates to a
+    /// non-finite point, its boundary does not form a region of its parameter plane (loops that
+    /// do not close, cross or touch, sides that do not meet at common vertices), or refinement
+    /// cannot bring its measured chordal error within the tolerance.
+    #[error("face {} cannot be meshed: {reason}", face.0)]
+    Tessellation {
+        /// The face (for an edge that cannot be sampled, the first face it lies on).
+        face: FaceId,
+        /// What went wrong, naming the edge, loop or parameters involved.
+        reason: String,
+    },
+    /// The solid is not a valid closed B-rep.
+    #[error(transparent)]
+    Topology(#[from] TopologyError),
 }
 
 /// A solid with its surface components, each with a mesh (and, for convex ones, a hull).
@@ -97,6 +115,74 @@ impl ObjectModel {
             .iter()
             .map(|c| tessellation.component_mesh(c))
             .collect();
+        Ok(Self::assemble(
+            name.into(),
+            Some(profile),
+            scale,
+            solid,
+            components,
+            meshes,
+            options,
+        ))
+    }
+
+    /// Validates a general solid (trimmed faces on any surface), classifies the convexity of
+    /// its faces and edges from the geometry ([`crate::classify_convexity`]; whatever the solid
+    /// carried is replaced), meshes it and partitions it into components.
+    ///
+    /// `scale` is the largest absolute coordinate of the surface, sampled at its
+    /// vertices, along its edges, on a grid over each face and at every mesh vertex. The solid
+    /// gets no profile.
+    ///
+    /// # Errors
+    /// [`ModelError::Topology`] for a solid that fails [`crate::validate`];
+    /// [`ModelError::BadTolerance`] for an unusable chordal tolerance (as
+    /// [`ObjectModel::from_profile`]); [`ModelError::Tessellation`] for a face that cannot be
+    /// meshed within it.
+    pub fn from_solid(
+        name: impl Into<String>,
+        mut solid: Solid,
+        options: &MeshOptions,
+    ) -> Result<Self, ModelError> {
+        validate(&solid)?;
+        classify_convexity(&mut solid);
+        let tolerance = options.chordal_tolerance;
+        let (lo, hi) = sampled_extent(&solid)?;
+        let scale = lo.abs().max(hi.abs()).max_element();
+        if !(tolerance.is_finite()
+            && tolerance >= MIN_RELATIVE_TOLERANCE * scale
+            && tolerance <= scale)
+        {
+            return Err(ModelError::BadTolerance { tolerance, scale });
+        }
+        let components = partition(&solid);
+        let tessellation = tessellate_solid(&solid, tolerance)?;
+        let scale = scale.max(tessellation.largest_coordinate());
+        let meshes: Vec<ComponentMesh> = components
+            .iter()
+            .map(|c| tessellation.component_mesh(c))
+            .collect();
+        Ok(Self::assemble(
+            name.into(),
+            None,
+            scale,
+            solid,
+            components,
+            meshes,
+            options,
+        ))
+    }
+
+    /// The model from its meshed components: hulls of the convex ones, and the face index.
+    fn assemble(
+        name: String,
+        profile: Option<Profile>,
+        scale: f64,
+        solid: Solid,
+        components: Vec<SurfaceComponent>,
+        meshes: Vec<ComponentMesh>,
+        options: &MeshOptions,
+    ) -> Self {
         let hulls = components
             .iter()
             .zip(&meshes)
@@ -111,9 +197,9 @@ impl ObjectModel {
                 component_of_face[f.0 as usize] = c.id;
             }
         }
-        Ok(Self {
-            name: name.into(),
-            profile: Some(profile),
+        Self {
+            name,
+            profile,
             scale,
             solid,
             components,
@@ -121,7 +207,7 @@ impl ObjectModel {
             hulls,
             mesh_options: *options,
             component_of_face,
-        })
+        }
     }
 
     /// The component a face belongs to.

@@ -4,7 +4,7 @@
 
 use contact_oracle::{ClosedFormScene, OracleContact, OracleOptions, closed_form, find_contacts};
 use contacts::scene::Scene;
-use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectDescription, Solid};
+use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectDescription, ObjectFile, Solid};
 use std::path::Path;
 
 /// A contact taken as the truth (world frame, mm).
@@ -86,7 +86,15 @@ pub fn paper_scene(root: &Path, name: &str) -> Result<AccuracyScene, String> {
     let [oa, ob] = scene.objects.as_slice() else {
         return Err(format!("{name}: expected two objects"));
     };
-    let (sa, sb) = (solid(&oa.description)?, solid(&ob.description)?);
+    let revolved = |file: &ObjectFile| match file {
+        ObjectFile::Revolved(d) => Ok(d.clone()),
+        ObjectFile::General(d) => Err(format!(
+            "{name}: {} is not a solid of revolution (the mesh baseline needs a profile)",
+            d.name
+        )),
+    };
+    let (da, db) = (revolved(&oa.description)?, revolved(&ob.description)?);
+    let (sa, sb) = (solid(&da)?, solid(&db)?);
     let options = OracleOptions::for_solids(&sa, &sb, DELTA2);
     let oracle = find_contacts(&sa, &oa.pose, &sb, &ob.pose, &options)
         .map_err(|e| format!("{name}: oracle: {e}"))?;
@@ -98,9 +106,9 @@ pub fn paper_scene(root: &Path, name: &str) -> Result<AccuracyScene, String> {
     Ok(AccuracyScene {
         name: name.to_string(),
         slug: slug(name),
-        a: oa.description.clone(),
+        a: da,
         pose_a: oa.pose,
-        b: ob.description.clone(),
+        b: db,
         pose_b: ob.pose,
         truth,
         truth_source: format!(

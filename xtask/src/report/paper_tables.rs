@@ -285,12 +285,15 @@ pub fn table3(root: &Path, repetitions: usize) -> Result<Vec<SceneTimes>, String
             let [oa, ob] = scene.objects.as_slice() else {
                 return Err(format!("{name}: expected two objects"));
             };
-            let a = pipeline
-                .prepare_description(&oa.description)
-                .map_err(|e| e.to_string())?;
-            let b = pipeline
-                .prepare_description(&ob.description)
-                .map_err(|e| e.to_string())?;
+            let mesh = geom_param::MeshOptions {
+                chordal_tolerance: scene.options.chordal_tolerance,
+            };
+            let prepare = |file: &geom_param::ObjectFile| {
+                file.build(&mesh)
+                    .map(|model| pipeline.prepare(model))
+                    .map_err(|e| e.to_string())
+            };
+            let (a, b) = (prepare(&oa.description)?, prepare(&ob.description)?);
             let times = StageTimes::measure(&pipeline, &a, &oa.pose, &b, &ob.pose, repetitions)?;
             Ok(SceneTimes {
                 name: (*name).to_string(),

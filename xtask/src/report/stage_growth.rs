@@ -33,6 +33,14 @@ pub fn with_resolution(
     let [oa, ob] = scene.objects.as_slice() else {
         return Err(format!("{scene_name}: expected two objects"));
     };
+    let revolved = |file: &geom_param::ObjectFile| match file {
+        geom_param::ObjectFile::Revolved(d) => Ok(d.clone()),
+        geom_param::ObjectFile::General(d) => Err(format!(
+            "{scene_name}: {} is not a solid of revolution",
+            d.name
+        )),
+    };
+    let (da, db) = (revolved(&oa.description)?, revolved(&ob.description)?);
     tolerances
         .iter()
         .map(|&chordal| {
@@ -42,8 +50,8 @@ pub fn with_resolution(
             };
             measure_pair(
                 options,
-                (&oa.description, &oa.pose),
-                (&ob.description, &ob.pose),
+                (&da, &oa.pose),
+                (&db, &ob.pose),
                 chordal,
                 repetitions,
             )

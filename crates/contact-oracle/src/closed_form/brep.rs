@@ -1,12 +1,16 @@
-//! Solids built face by face for the closed-form scenes and tests: a rectangular block, a
-//! tetrahedron and a square plate with a cylindrical hole. Every planar face is a plane trimmed by its loops (an outer loop of
-//! straight edges, counter-clockwise, and for the plate a circular hole, clockwise); edges are
-//! straight lines between corner vertices, or circles about the z axis.
+//! Solids built face by face for the closed-form scenes and tests: a rectangular block and a
+//! tetrahedron whose faces are all trimmed planes (every edge between two trims), and, through
+//! geom-param's extrusion, a square plate with a cylindrical hole.
+//!
+//! The polyhedra: each face is a plane (origin at its first corner, x along its first side)
+//! trimmed by one counter-clockwise loop of straight edges; each edge is the line from one
+//! corner to another, t the arc length, used forwards by the face that meets it first and
+//! backwards by the other; every corner is a vertex ending its edges.
 
-use super::analytic::{CylinderSurface, EllipseCurve2, LineCurve, PlaneSurface};
 use geom_param::{
-    Boundary, CircleEdge, Curve, Edge, EdgeConvexity, EdgeId, EdgeOn, EdgeUse, Face, FaceConvexity,
-    FaceId, Line2, ParamRange, Solid, Trim, TrimEntry, TrimLoop, Vertex, VertexId,
+    Boundary, BuildError, Edge, EdgeConvexity, EdgeId, EdgeOn, EdgeUse, Face, FaceConvexity,
+    FaceId, Line2, LineCurve, ParamRange, Placement, PlanarProfile, PlanarSegment, Plane, Solid,
+    Trim, TrimEntry, TrimLoop, Vertex, VertexId, extrude, validate,
 };
 use glam::{DVec2, DVec3};
 use std::collections::BTreeMap;
@@ -35,221 +39,210 @@ const BOX_FACES: [[usize; 4]; 6] = [
     [1, 3, 7, 5],
 ];
 
-/// An edge under construction: its curve, its uses as far as known, its end vertices.
+/// A plane's frame: (u, v) of a point is its offset from `origin` along `x` and `y`.
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    origin: DVec3,
+    x: DVec3,
+    y: DVec3,
+}
+
+impl Frame {
+    fn params_of(&self, p: DVec3) -> DVec2 {
+        let d = p - self.origin;
+        DVec2::new(d.dot(self.x), d.dot(self.y))
+    }
+}
+
+/// A face under construction: the plane and its loop of entries.
+struct FaceDraft {
+    plane: Plane,
+    entries: Vec<TrimEntry>,
+}
+
+/// An edge under construction: its line, its uses as far as known, its end vertices.
 struct EdgeDraft {
-    curve: Box<dyn Curve>,
+    curve: LineCurve,
     uses: [Option<EdgeUse>; 2],
-    ends: Option<[VertexId; 2]>,
-}
-
-/// [`BOX_FACES`] as slices.
-fn box_faces() -> Vec<&'static [usize]> {
-    BOX_FACES.iter().map(|f| &f[..]).collect()
-}
-
-/// A polyhedron of trimmed planar faces under construction.
-struct PlanarBuilder {
-    points: Vec<DVec3>,
-    planes: Vec<PlaneSurface>,
-    /// Per face, its loops of entries (loop 0 outer).
-    loops: Vec<Vec<Vec<TrimEntry>>>,
-    edges: Vec<EdgeDraft>,
-    /// Straight edges by (start corner, end corner).
-    straight: BTreeMap<(usize, usize), EdgeId>,
+    ends: [VertexId; 2],
 }
 
 fn id32(i: usize) -> u32 {
     u32::try_from(i).expect("a handful of features")
 }
 
-impl PlanarBuilder {
-    /// Planar faces with the corner cycles `faces` (counter-clockwise seen from outside) over
-    /// the corner `points`. Each plane has its origin at the cycle's first corner and its x
-    /// axis along the first side; its domain is the cycle's (u, v) box grown by a quarter on
-    /// every side, so the trim lies strictly inside.
-    fn new(points: Vec<DVec3>, faces: &[&[usize]]) -> Self {
-        let mut out = Self {
-            points,
-            planes: Vec::new(),
-            loops: Vec::new(),
-            edges: Vec::new(),
-            straight: BTreeMap::new(),
+/// The polyhedron with corners `points` and faces `cycles` (corner indices, counter-clockwise
+/// seen from outside, each side shared by exactly two faces in opposite directions), every
+/// face a trimmed plane whose domain is its loop's (u, v) box grown by a quarter on every side
+/// (so the trim lies strictly inside); validated.
+fn polyhedron(points: &[DVec3], cycles: &[&[usize]]) -> Result<Solid, BuildError> {
+    let mut faces: Vec<FaceDraft> = Vec::new();
+    let mut edges: Vec<EdgeDraft> = Vec::new();
+    let mut straight: BTreeMap<(usize, usize), EdgeId> = BTreeMap::new();
+    for cycle in cycles {
+        let p = |k: usize| points[cycle[k % cycle.len()]];
+        let x = (p(1) - p(0)).normalize();
+        let n = (p(1) - p(0)).cross(p(2) - p(1)).normalize();
+        let frame = Frame {
+            origin: p(0),
+            x,
+            y: n.cross(x),
         };
-        for cycle in faces {
-            let p = |k: usize| out.points[cycle[k % cycle.len()]];
-            let x = (p(1) - p(0)).normalize();
-            let n = (p(1) - p(0)).cross(p(2) - p(1)).normalize();
-            let y = n.cross(x);
-            let mut plane = PlaneSurface {
-                origin: p(0),
-                x,
-                y,
-                domain: [ParamRange {
-                    min: 0.0,
-                    max: 0.0,
-                    periodic: false,
-                }; 2],
-            };
-            let uvs: Vec<DVec2> = (0..cycle.len()).map(|k| plane.params_of(p(k))).collect();
-            let lo = uvs.iter().copied().fold(DVec2::INFINITY, DVec2::min);
-            let hi = uvs.iter().copied().fold(DVec2::NEG_INFINITY, DVec2::max);
-            let grow = 0.25 * (hi - lo);
-            for i in 0..2 {
-                plane.domain[i] = ParamRange {
-                    min: lo[i] - grow[i],
-                    max: hi[i] + grow[i],
-                    periodic: false,
-                };
-            }
-            let face = out.planes.len();
-            out.planes.push(plane);
-            out.loops.push(vec![Vec::new()]);
-            for k in 0..cycle.len() {
-                out.side(face, cycle[k], cycle[(k + 1) % cycle.len()]);
-            }
-        }
-        out
-    }
-
-    /// Adds the straight side from corner `i` to corner `j` to `face`'s outer loop: a new edge
-    /// i → j (t = arc length from i), or the existing edge j → i traversed backwards.
-    fn side(&mut self, face: usize, i: usize, j: usize) {
-        let plane = self.planes[face];
-        let index = self.loops[face][0].len();
-        let on = EdgeOn::Trim {
-            loop_index: 0,
-            index: id32(index),
-        };
-        let use_ = EdgeUse {
-            face: FaceId(id32(face)),
-            on,
-        };
-        let (start, end, reversed) = if self.straight.contains_key(&(j, i)) {
-            (j, i, true)
-        } else {
-            (i, j, false)
-        };
-        let (a, b) = (self.points[start], self.points[end]);
-        let length = a.distance(b);
-        let range = ParamRange {
-            min: 0.0,
-            max: length,
+        let uvs: Vec<DVec2> = (0..cycle.len()).map(|k| frame.params_of(p(k))).collect();
+        let lo = uvs.iter().copied().fold(DVec2::INFINITY, DVec2::min);
+        let hi = uvs.iter().copied().fold(DVec2::NEG_INFINITY, DVec2::max);
+        let grow = 0.25 * (hi - lo);
+        let range = |i: usize| ParamRange {
+            min: lo[i] - grow[i],
+            max: hi[i] + grow[i],
             periodic: false,
         };
-        let pcurve = Line2 {
-            origin: plane.params_of(a),
-            direction: (plane.params_of(b) - plane.params_of(a)) / length,
-            range,
-        };
-        let edge = if reversed {
-            let edge = self.straight[&(j, i)];
-            self.edges[edge.0 as usize].uses[1] = Some(use_);
-            edge
-        } else {
-            let edge = EdgeId(id32(self.edges.len()));
-            self.edges.push(EdgeDraft {
-                curve: Box::new(LineCurve {
-                    origin: a,
-                    direction: (b - a) / length,
-                    range,
-                }),
-                uses: [Some(use_), None],
-                ends: Some([VertexId(id32(i)), VertexId(id32(j))]),
-            });
-            self.straight.insert((i, j), edge);
-            edge
-        };
-        self.loops[face][0].push(TrimEntry::new(edge, Box::new(pcurve), reversed));
+        let plane = Plane::new(Placement::new(p(0), n, x)?, [range(0), range(1)])?;
+        let face = faces.len();
+        let mut entries = Vec::new();
+        for k in 0..cycle.len() {
+            let (i, j) = (cycle[k], cycle[(k + 1) % cycle.len()]);
+            let use_ = EdgeUse {
+                face: FaceId(id32(face)),
+                on: EdgeOn::Trim {
+                    loop_index: 0,
+                    index: id32(k),
+                },
+            };
+            // The edge runs from its first face's corner i to j; the other face walks it back.
+            let (start, end, reversed) = if straight.contains_key(&(j, i)) {
+                (j, i, true)
+            } else {
+                (i, j, false)
+            };
+            let (a, b) = (points[start], points[end]);
+            let length = a.distance(b);
+            let t_range = ParamRange {
+                min: 0.0,
+                max: length,
+                periodic: false,
+            };
+            let edge = if reversed {
+                let edge = straight[&(j, i)];
+                edges[edge.0 as usize].uses[1] = Some(use_);
+                edge
+            } else {
+                let edge = EdgeId(id32(edges.len()));
+                edges.push(EdgeDraft {
+                    curve: LineCurve::new(a, (b - a) / length, t_range)?,
+                    uses: [Some(use_), None],
+                    ends: [VertexId(id32(i)), VertexId(id32(j))],
+                });
+                straight.insert((i, j), edge);
+                edge
+            };
+            let pcurve = Line2 {
+                origin: frame.params_of(a),
+                direction: (frame.params_of(b) - frame.params_of(a)) / length,
+                range: t_range,
+            };
+            entries.push(TrimEntry::new(edge, Box::new(pcurve), reversed));
+        }
+        faces.push(FaceDraft { plane, entries });
     }
-
-    /// Adds a circle about the z axis (radius `radius`, height `z`) as a hole loop of `face`,
-    /// traversed backwards when `reversed`; returns the edge (its second use still to set).
-    fn circle_hole(&mut self, face: usize, radius: f64, z: f64, reversed: bool) -> EdgeId {
-        let plane = self.planes[face];
-        let centre = DVec3::new(0.0, 0.0, z);
-        let c = plane.params_of(centre);
-        let pcurve = EllipseCurve2 {
-            centre: c,
-            a: plane.params_of(centre + radius * DVec3::X) - c,
-            b: plane.params_of(centre + radius * DVec3::Y) - c,
-        };
-        let edge = EdgeId(id32(self.edges.len()));
-        let loop_index = self.loops[face].len();
-        let use_ = EdgeUse {
-            face: FaceId(id32(face)),
-            on: EdgeOn::Trim {
-                loop_index: id32(loop_index),
-                index: 0,
-            },
-        };
-        self.edges.push(EdgeDraft {
-            curve: Box::new(CircleEdge { radius, z }),
-            uses: [Some(use_), None],
-            ends: None,
-        });
-        self.loops[face].push(vec![TrimEntry::new(edge, Box::new(pcurve), reversed)]);
-        edge
-    }
-
-    /// The solid: the planar faces (flat, trimmed), then `extra` faces; corners as vertices
-    /// with their edges; every edge convex.
-    fn finish(self, extra: Vec<Face>) -> Solid {
-        let mut faces = Vec::new();
-        for (plane, loops) in self.planes.into_iter().zip(self.loops) {
-            let domain = plane.domain;
-            faces.push(Face {
-                surface: Box::new(plane),
+    let faces: Vec<Face> = faces
+        .into_iter()
+        .map(|f| {
+            let domain = geom_param::Surface::domain(&f.plane);
+            Face {
+                surface: Box::new(f.plane),
                 boundary: [Boundary::Trimmed; 4],
-                trim: Some(Trim::new(
-                    loops.into_iter().map(TrimLoop::new).collect(),
-                    &domain,
-                )),
+                trim: Some(Trim::new(vec![TrimLoop::new(f.entries)], &domain)),
                 convexity: FaceConvexity::Flat,
-            });
-        }
-        faces.extend(extra);
-        let mut vertices: Vec<Vertex> = self
-            .points
-            .iter()
-            .map(|&point| Vertex {
-                point,
-                faces: Vec::new(),
-                edges: Vec::new(),
-            })
-            .collect();
-        let mut edges = Vec::new();
-        for (e, EdgeDraft { curve, uses, ends }) in self.edges.into_iter().enumerate() {
-            for v in ends.iter().flatten() {
-                vertices[v.0 as usize].edges.push(EdgeId(id32(e)));
             }
-            edges.push(Edge {
-                curve,
-                uses: uses.map(|u| u.expect("every edge has both uses")),
-                ends,
-                convexity: EdgeConvexity::Convex,
+        })
+        .collect();
+    let mut vertices: Vec<Vertex> = points
+        .iter()
+        .map(|&point| Vertex {
+            point,
+            faces: Vec::new(),
+            edges: Vec::new(),
+        })
+        .collect();
+    let mut out_edges = Vec::new();
+    for (e, draft) in edges.into_iter().enumerate() {
+        for v in draft.ends {
+            vertices[v.0 as usize].edges.push(EdgeId(id32(e)));
+        }
+        let [Some(first), Some(second)] = draft.uses else {
+            return Err(BuildError::BadDimension {
+                what: "polyhedron edge uses",
+                value: e as f64,
+                requirement: "every side shared by two faces",
             });
-        }
-        Solid {
-            faces,
-            edges,
-            vertices,
-            tolerance: 0.0,
-        }
+        };
+        out_edges.push(Edge {
+            curve: Box::new(draft.curve),
+            uses: [first, second],
+            ends: Some(draft.ends),
+            convexity: EdgeConvexity::Convex,
+        });
+    }
+    let solid = Solid {
+        faces,
+        edges: out_edges,
+        vertices,
+        tolerance: 0.0,
+    };
+    validate(&solid)?;
+    Ok(solid)
+}
+
+/// Checks that a dimension is finite and positive.
+fn positive(what: &'static str, value: f64) -> Result<f64, BuildError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(BuildError::BadDimension {
+            what,
+            value,
+            requirement: "finite and > 0",
+        })
     }
 }
 
 /// A rectangular block with sides `size` (mm) centred at the origin, edges along the axes:
 /// six trimmed planes, twelve straight edges, eight corners.
-#[must_use]
-pub fn block(size: DVec3) -> Solid {
+///
+/// # Errors
+/// [`BuildError::BadDimension`] for a side that is not finite and positive.
+pub fn block(size: DVec3) -> Result<Solid, BuildError> {
+    for s in size.to_array() {
+        positive("block side", s)?;
+    }
     let half = 0.5 * size;
-    PlanarBuilder::new(corners(-half, half), &box_faces()).finish(Vec::new())
+    let cycles: Vec<&[usize]> = BOX_FACES.iter().map(|f| &f[..]).collect();
+    polyhedron(&corners(-half, half), &cycles)
 }
 
-/// The tetrahedron with these four corners (not coplanar): four trimmed triangular planes,
-/// six straight edges, four corners.
-#[must_use]
-pub fn tetrahedron(points: [DVec3; 4]) -> Solid {
+/// The tetrahedron with these four corners: four trimmed triangular planes, six straight
+/// edges, four corners.
+///
+/// # Errors
+/// [`BuildError::BadDimension`] when the corners are not finite or are (nearly) coplanar.
+pub fn tetrahedron(points: [DVec3; 4]) -> Result<Solid, BuildError> {
+    let size = points
+        .iter()
+        .map(|p| p.distance(points[0]))
+        .fold(0.0, f64::max);
+    let volume = (points[1] - points[0])
+        .cross(points[2] - points[0])
+        .dot(points[3] - points[0]);
+    // Also refuses NaN.
+    let flat = volume.abs().partial_cmp(&(1e-9 * size * size * size));
+    if flat != Some(std::cmp::Ordering::Greater) {
+        return Err(BuildError::BadDimension {
+            what: "tetrahedron volume x 6",
+            value: volume,
+            requirement: "corners finite and not coplanar",
+        });
+    }
     let faces: Vec<[usize; 3]> = (0..4)
         .map(|apart| {
             let mut f: Vec<usize> = (0..4).filter(|&k| k != apart).collect();
@@ -263,54 +256,45 @@ pub fn tetrahedron(points: [DVec3; 4]) -> Solid {
         })
         .collect();
     let cycles: Vec<&[usize]> = faces.iter().map(|f| &f[..]).collect();
-    PlanarBuilder::new(points.to_vec(), &cycles).finish(Vec::new())
+    polyhedron(&points, &cycles)
+}
+
+/// The profile of a square `width` wide centred at the origin with a circular hole of radius
+/// `radius` about the origin.
+#[must_use]
+pub fn holed_square(width: f64, radius: f64) -> PlanarProfile {
+    let h = 0.5 * width;
+    let corner = |x: f64, y: f64| DVec2::new(x * h, y * h);
+    let line = |from: DVec2, to: DVec2| PlanarSegment::Line { from, to };
+    let start = DVec2::new(radius, 0.0);
+    PlanarProfile {
+        outer: vec![
+            line(corner(-1.0, -1.0), corner(1.0, -1.0)),
+            line(corner(1.0, -1.0), corner(1.0, 1.0)),
+            line(corner(1.0, 1.0), corner(-1.0, 1.0)),
+            line(corner(-1.0, 1.0), corner(-1.0, -1.0)),
+        ],
+        holes: vec![vec![PlanarSegment::Arc {
+            center: DVec2::ZERO,
+            from: start,
+            to: start,
+            ccw: false,
+        }]],
+    }
 }
 
 /// A square plate `width` x `width` x `thickness` (mm) centred at the origin (faces normal to
 /// the axes, z through its thickness) with a cylindrical hole of radius `radius` along the z
-/// axis. The top and bottom faces are planes trimmed by the square and, as a hole, the circle;
-/// the hole's wall is a cylinder face over its whole parameter rectangle (u the angle about z,
-/// v from the top down), its normal towards the axis.
-#[must_use]
-pub fn holed_plate(width: f64, thickness: f64, radius: f64) -> Solid {
-    let half = DVec3::new(0.5 * width, 0.5 * width, 0.5 * thickness);
-    let mut builder = PlanarBuilder::new(corners(-half, half), &box_faces());
-    let (bottom, top) = (0, 1);
-    // Seen from above, the top face's (u, v) is (x, y): the hole runs clockwise against the
-    // circle's t. The bottom face's (u, v) is (y, x): there increasing t is clockwise.
-    let top_edge = builder.circle_hole(top, radius, half.z, true);
-    let bottom_edge = builder.circle_hole(bottom, radius, -half.z, false);
-    let wall = FaceId(id32(builder.planes.len()));
-    builder.edges[top_edge.0 as usize].uses[1] = Some(EdgeUse {
-        face: wall,
-        on: EdgeOn::Side(geom_param::ParamSide::VMin),
-    });
-    builder.edges[bottom_edge.0 as usize].uses[1] = Some(EdgeUse {
-        face: wall,
-        on: EdgeOn::Side(geom_param::ParamSide::VMax),
-    });
-    // Left-handed (x, y, -z): the normal points at the axis; v = 0 on the top circle.
-    let cylinder = CylinderSurface {
-        origin: DVec3::new(0.0, 0.0, half.z),
-        x: DVec3::X,
-        y: DVec3::Y,
-        z: DVec3::NEG_Z,
-        radius,
-        height: ParamRange {
-            min: 0.0,
-            max: thickness,
-            periodic: false,
-        },
-    };
-    builder.finish(vec![Face {
-        surface: Box::new(cylinder),
-        boundary: [
-            Boundary::Periodic,
-            Boundary::Periodic,
-            Boundary::Edge(top_edge),
-            Boundary::Edge(bottom_edge),
-        ],
-        trim: None,
-        convexity: FaceConvexity::Concave,
-    }])
+/// axis: geom-param's [`extrude`] of [`holed_square`]. The caps are planes trimmed by the
+/// square and, as a hole, the circle; the hole's wall is a reversed cylinder over its whole
+/// parameter rectangle, its normal towards the axis.
+///
+/// # Errors
+/// As [`extrude`] (a hole that does not fit, a non-positive thickness).
+pub fn holed_plate(width: f64, thickness: f64, radius: f64) -> Result<Solid, BuildError> {
+    extrude(
+        &holed_square(width, radius),
+        -0.5 * thickness,
+        0.5 * thickness,
+    )
 }

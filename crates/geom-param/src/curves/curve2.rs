@@ -52,3 +52,36 @@ impl Curve2 for Line2 {
         self.range
     }
 }
+
+/// The circular p-curve c(t) = centre + radius (cos φ, sin φ) with φ = phase + sense · t: a
+/// circular edge on a plane whose (u, v) are lengths, with the edge's angle as t. `sense` is +1
+/// when the circle runs counter-clockwise in (u, v) as t grows, −1 when clockwise.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Circle2 {
+    /// Centre in (u, v).
+    pub center: DVec2,
+    /// Radius in parameter units (> 0).
+    pub radius: f64,
+    /// The angle φ at t = 0 (rad, from the u axis towards the v axis).
+    pub phase: f64,
+    /// +1 or −1.
+    pub sense: f64,
+    /// The domain of t.
+    pub range: ParamRange,
+}
+
+impl Curve2 for Circle2 {
+    fn eval(&self, t: f64) -> Curve2Point {
+        let (sin, cos) = (self.phase + self.sense * t).sin_cos();
+        let (r, s) = (self.radius, self.sense);
+        Curve2Point {
+            point: self.center + r * DVec2::new(cos, sin),
+            d1: r * s * DVec2::new(-sin, cos),
+            d2: -r * DVec2::new(cos, sin),
+        }
+    }
+
+    fn domain(&self) -> ParamRange {
+        self.range
+    }
+}

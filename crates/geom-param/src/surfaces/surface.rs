@@ -95,3 +95,23 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
         self.eval(u, v).principal_curvatures_with(n)
     }
 }
+
+/// A shared surface is a surface: lets a face and the iso-curves of its sides
+/// ([`crate::IsoCurve`]) evaluate one geometry.
+impl<S: Surface + ?Sized> Surface for std::sync::Arc<S> {
+    fn eval(&self, u: f64, v: f64) -> SurfacePoint {
+        (**self).eval(u, v)
+    }
+
+    fn domain(&self) -> [ParamRange; 2] {
+        (**self).domain()
+    }
+
+    fn normal(&self, u: f64, v: f64) -> Option<DVec3> {
+        (**self).normal(u, v)
+    }
+
+    fn principal_curvatures(&self, u: f64, v: f64) -> Option<PrincipalCurvatures> {
+        (**self).principal_curvatures(u, v)
+    }
+}

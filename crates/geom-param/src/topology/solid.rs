@@ -94,6 +94,10 @@ pub enum EdgeOn {
     /// Along a side of the face's parameter rectangle: the edge's parameter t equals the face
     /// parameter that runs along the side (u on a v side, v on a u side).
     Side(ParamSide),
+    /// Along a side of the face's parameter rectangle, running against the edge: the face
+    /// parameter that runs along the side equals −t. Lets a builder join two rectangle faces
+    /// whose running parameters grow in opposite directions along their common edge.
+    SideReversed(ParamSide),
     /// On the face's trim: entry `index` of loop `loop_index` of [`Face::trim`], whose p-curve
     /// gives the face's (u, v) at each t of the edge.
     Trim {
@@ -102,6 +106,34 @@ pub enum EdgeOn {
         /// Position in that loop.
         index: u32,
     },
+}
+
+impl EdgeOn {
+    /// The side of the parameter rectangle, for [`EdgeOn::Side`] and [`EdgeOn::SideReversed`].
+    #[must_use]
+    pub fn side(&self) -> Option<ParamSide> {
+        match *self {
+            Self::Side(side) | Self::SideReversed(side) => Some(side),
+            Self::Trim { .. } => None,
+        }
+    }
+
+    /// The running parameter along a side at edge parameter `t` (t or −t), or `t` itself for
+    /// a trim entry.
+    #[must_use]
+    pub fn running(&self, t: f64) -> f64 {
+        match self {
+            Self::SideReversed(_) => -t,
+            _ => t,
+        }
+    }
+
+    /// The edge parameter where the running parameter along a side is `running` (the
+    /// inverse of [`EdgeOn::running`]).
+    #[must_use]
+    pub fn edge_param(&self, running: f64) -> f64 {
+        self.running(running)
+    }
 }
 
 /// How an edge lies on one of its faces.
@@ -247,18 +279,20 @@ impl Solid {
     pub fn use_eval(&self, use_: &EdgeUse, t: f64) -> Curve2Point {
         let face = self.face(use_.face);
         match use_.on {
-            EdgeOn::Side(side) => {
+            EdgeOn::Side(side) | EdgeOn::SideReversed(side) => {
                 let domain = face.surface.domain();
+                let r = use_.on.running(t);
                 let point = match side {
-                    ParamSide::UMin => DVec2::new(domain[0].min, t),
-                    ParamSide::UMax => DVec2::new(domain[0].max, t),
-                    ParamSide::VMin => DVec2::new(t, domain[1].min),
-                    ParamSide::VMax => DVec2::new(t, domain[1].max),
+                    ParamSide::UMin => DVec2::new(domain[0].min, r),
+                    ParamSide::UMax => DVec2::new(domain[0].max, r),
+                    ParamSide::VMin => DVec2::new(r, domain[1].min),
+                    ParamSide::VMax => DVec2::new(r, domain[1].max),
                 };
-                let d1 = match side {
+                let along = match side {
                     ParamSide::UMin | ParamSide::UMax => DVec2::Y,
                     ParamSide::VMin | ParamSide::VMax => DVec2::X,
                 };
+                let d1 = use_.on.running(1.0) * along;
                 Curve2Point {
                     point,
                     d1,
@@ -294,7 +328,7 @@ impl Solid {
     #[must_use]
     pub fn use_inward(&self, use_: &EdgeUse, t: f64) -> DVec2 {
         match use_.on {
-            EdgeOn::Side(side) => match side {
+            EdgeOn::Side(side) | EdgeOn::SideReversed(side) => match side {
                 ParamSide::UMin => DVec2::X,
                 ParamSide::UMax => DVec2::NEG_X,
                 ParamSide::VMin => DVec2::Y,

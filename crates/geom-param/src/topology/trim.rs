@@ -104,9 +104,11 @@ impl TrimLoop {
         0.5 * twice
     }
 
-    /// The polyline segments in loop order.
+    /// The polyline segments in loop order, closed by a segment from the last point back to
+    /// the first (the entries meet only within rounding, and a ray through such a gap would
+    /// miss the loop).
     pub fn segments(&self) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
-        self.entries.iter().flat_map(|entry| {
+        let chain = self.entries.iter().flat_map(|entry| {
             let points = &entry.polyline;
             let n = points.len();
             (1..n).map(move |k| {
@@ -116,7 +118,18 @@ impl TrimLoop {
                     (points[k - 1].1, points[k].1)
                 }
             })
-        })
+        });
+        let end_point = |entry: &TrimEntry, start: bool| {
+            let points = &entry.polyline;
+            let first = points.first().map(|p| p.1);
+            let last = points.last().map(|p| p.1);
+            if start != entry.reversed { first } else { last }
+        };
+        let closing = match (self.entries.last(), self.entries.first()) {
+            (Some(l), Some(f)) => end_point(l, false).zip(end_point(f, true)),
+            _ => None,
+        };
+        chain.chain(closing)
     }
 }
 

@@ -296,8 +296,10 @@ fn forward(solid: &Solid, face: FaceId, on: EdgeOn) -> bool {
     match on {
         // Counter-clockwise around the rectangle: +u along v_min, +v along u_max, -u along
         // v_max, -v along u_min.
-        EdgeOn::Side(ParamSide::VMin | ParamSide::UMax) => true,
-        EdgeOn::Side(ParamSide::VMax | ParamSide::UMin) => false,
+        EdgeOn::Side(ParamSide::VMin | ParamSide::UMax)
+        | EdgeOn::SideReversed(ParamSide::VMax | ParamSide::UMin) => true,
+        EdgeOn::Side(ParamSide::VMax | ParamSide::UMin)
+        | EdgeOn::SideReversed(ParamSide::VMin | ParamSide::UMax) => false,
         EdgeOn::Trim { loop_index, index } => {
             let trim = solid.face(face).trim.as_ref().expect("checked reference");
             !trim.loops[loop_index as usize].entries[index as usize].reversed
@@ -344,7 +346,12 @@ fn check_edge_uses(solid: &Solid) -> Result<(), TopologyError> {
             });
         }
         for use_ in &edge.uses {
-            if !refs[e].contains(&(use_.face, use_.on)) {
+            // A side is named by the face's boundary whichever way the edge runs along it.
+            let named = refs[e].iter().any(|&(face, on)| {
+                face == use_.face
+                    && (on == use_.on || on.side().is_some() && on.side() == use_.on.side())
+            });
+            if !named {
                 return Err(TopologyError::UseNotOnFace {
                     edge: id,
                     face: use_.face,
@@ -352,7 +359,8 @@ fn check_edge_uses(solid: &Solid) -> Result<(), TopologyError> {
             }
         }
         let [a, b] = edge.uses;
-        if a.face == b.face && a.on == b.on {
+        if a.face == b.face && (a.on == b.on || a.on.side().is_some() && a.on.side() == b.on.side())
+        {
             return Err(TopologyError::EdgeUseCount { edge: id, count: 1 });
         }
         if forward(solid, a.face, a.on) == forward(solid, b.face, b.on) {
