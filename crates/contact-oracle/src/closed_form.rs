@@ -4,9 +4,19 @@
 //! Every builder is parametrised by the signed gap (mm; negative: overlap depth) and returns
 //! the exact contacts. A scene can be moved rigidly as a whole ([`ClosedFormScene::moved`]) so
 //! tests need not rely on axis-aligned poses.
+//!
+//! [`ClosedFormScene`]s pair two solids of revolution (profiles); [`BrepScene`]s pair a sphere
+//! with a general solid ([`brep`]: a block with trimmed planar faces, straight edges and
+//! corners; geom-param's extrusions: a plate with a cylindrical hole, an L-shaped bracket), so
+//! that contacts on a face, on an edge (the distance to a line), at a corner (the distance to
+//! a point), inside a hole (the distance to a cylinder) and in a concave corner have exact
+//! answers.
+
+pub mod brep;
 
 use geom_param::{
-    DPose3, DQuat, DVec3, LoadError, MeshOptions, ObjectDescription, SegmentSpec, Solid,
+    BuildError, DPose3, DQuat, DVec2, DVec3, LoadError, MeshOptions, ObjectDescription,
+    PlanarProfile, PlanarSegment, SegmentSpec, Solid, extrude,
 };
 
 /// One exact contact, world frame: point_b = point_a + distance · normal, normal = A's outward
@@ -41,30 +51,38 @@ pub struct ClosedFormScene {
     pub expected: Vec<ExpectedContact>,
 }
 
+/// `motion` after `pose`.
+fn compose(motion: &DPose3, pose: &DPose3) -> DPose3 {
+    DPose3 {
+        rotation: (motion.rotation * pose.rotation).normalize(),
+        translation: motion.rotation * pose.translation + motion.translation,
+    }
+}
+
+/// The expected contacts after the rigid motion `motion` of the whole world.
+fn moved_contacts(expected: &[ExpectedContact], motion: &DPose3) -> Vec<ExpectedContact> {
+    expected
+        .iter()
+        .map(|e| ExpectedContact {
+            point_a: motion.rotation * e.point_a + motion.translation,
+            point_b: motion.rotation * e.point_b + motion.translation,
+            distance: e.distance,
+            normal: motion.rotation * e.normal,
+        })
+        .collect()
+}
+
 impl ClosedFormScene {
     /// The scene after the rigid motion `motion` of the whole world.
     #[must_use]
     pub fn moved(&self, motion: &DPose3) -> Self {
-        let compose = |p: &DPose3| DPose3 {
-            rotation: (motion.rotation * p.rotation).normalize(),
-            translation: motion.rotation * p.translation + motion.translation,
-        };
         Self {
             name: self.name.clone(),
             a: self.a.clone(),
-            pose_a: compose(&self.pose_a),
+            pose_a: compose(motion, &self.pose_a),
             b: self.b.clone(),
-            pose_b: compose(&self.pose_b),
-            expected: self
-                .expected
-                .iter()
-                .map(|e| ExpectedContact {
-                    point_a: motion.rotation * e.point_a + motion.translation,
-                    point_b: motion.rotation * e.point_b + motion.translation,
-                    distance: e.distance,
-                    normal: motion.rotation * e.normal,
-                })
-                .collect(),
+            pose_b: compose(motion, &self.pose_b),
+            expected: moved_contacts(&self.expected, motion),
         }
     }
 
@@ -397,6 +415,354 @@ pub fn rod_across_torus(core: f64, tube: f64, rod: f64, gap: f64) -> ClosedFormS
             DVec3::new(0.0, 0.0, tube + rod + gap),
         ),
         b: torus(core, tube),
+        pose_b: DPose3::IDENTITY,
+        expected,
+    }
+}
+
+/// An object of a [`BrepScene`]: a solid of revolution from its profile, or a solid built face
+/// by face.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SceneObject {
+    /// The solid revolved from this description.
+    Profile(ObjectDescription),
+    /// [`brep::block`]: sides `size` (mm), centred at the origin, edges along the axes.
+    Block {
+        /// Side lengths along x, y, z (mm).
+        size: DVec3,
+    },
+    /// geom-param's [`extrude`] of a planar profile (xy plane) from z0 to z1 (mm).
+    Extrusion {
+        /// The profile, holes included.
+        profile: PlanarProfile,
+        /// Bottom (mm).
+        z0: f64,
+        /// Top (mm).
+        z1: f64,
+    },
+}
+
+/// Why a closed-form scene's object could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// A solid of revolution's profile is invalid.
+    #[error(transparent)]
+    Profile(#[from] LoadError),
+    /// A general solid could not be built or fails validation.
+    #[error(transparent)]
+    Build(#[from] BuildError),
+}
+
+impl SceneObject {
+    /// The exact solid.
+    ///
+    /// # Errors
+    /// A [`SceneError`] if a profile or a dimension is invalid (the builders' tests check
+    /// they are not).
+    pub fn solid(&self) -> Result<Solid, SceneError> {
+        Ok(match self {
+            Self::Profile(d) => build(d)?,
+            Self::Block { size } => brep::block(*size)?,
+            Self::Extrusion { profile, z0, z1 } => extrude(profile, *z0, *z1)?,
+        })
+    }
+}
+
+/// The plate of [`sphere_in_hole`] and [`sphere_on_hole_rim`]: [`brep::holed_plate`] as a
+/// scene object.
+fn holed_plate(width: f64, thickness: f64, radius: f64) -> SceneObject {
+    SceneObject::Extrusion {
+        profile: brep::holed_square(width, radius),
+        z0: -0.5 * thickness,
+        z1: 0.5 * thickness,
+    }
+}
+
+/// Two posed objects, at least one of them built face by face, and their exact contacts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BrepScene {
+    /// Name for messages, with the parameters.
+    pub name: String,
+    /// Object A.
+    pub a: SceneObject,
+    /// A's pose (object to world).
+    pub pose_a: DPose3,
+    /// Object B.
+    pub b: SceneObject,
+    /// B's pose.
+    pub pose_b: DPose3,
+    /// Every local minimum of distance (or penetration witness) within 1 mm, in no order.
+    pub expected: Vec<ExpectedContact>,
+}
+
+impl BrepScene {
+    /// The scene after the rigid motion `motion` of the whole world.
+    #[must_use]
+    pub fn moved(&self, motion: &DPose3) -> Self {
+        Self {
+            name: self.name.clone(),
+            a: self.a.clone(),
+            pose_a: compose(motion, &self.pose_a),
+            b: self.b.clone(),
+            pose_b: compose(motion, &self.pose_b),
+            expected: moved_contacts(&self.expected, motion),
+        }
+    }
+
+    /// The same scene with A and B exchanged: each contact's points exchanged and its normal
+    /// reversed (B's outward normal is minus A's at a contact).
+    #[must_use]
+    pub fn swapped(&self) -> Self {
+        Self {
+            name: format!("{} (swapped)", self.name),
+            a: self.b.clone(),
+            pose_a: self.pose_b,
+            b: self.a.clone(),
+            pose_b: self.pose_a,
+            expected: self
+                .expected
+                .iter()
+                .map(|e| ExpectedContact {
+                    point_a: e.point_b,
+                    point_b: e.point_a,
+                    distance: e.distance,
+                    normal: -e.normal,
+                })
+                .collect(),
+        }
+    }
+
+    /// The exact solids of A and B.
+    ///
+    /// # Errors
+    /// A [`SceneError`] if an object cannot be built.
+    pub fn solids(&self) -> Result<(Solid, Solid), SceneError> {
+        Ok((self.a.solid()?, self.b.solid()?))
+    }
+}
+
+/// A sphere (A, radius `r`, spun by `spin`) whose centre is `r + gap` from the point `foot` of
+/// B along B's outward direction `away` there (unit), with B the block `size`: one contact,
+/// point_b = foot, normal = −away.
+fn sphere_at_block(
+    name: String,
+    r: f64,
+    size: DVec3,
+    gap: f64,
+    foot: DVec3,
+    away: DVec3,
+    spin: DQuat,
+) -> BrepScene {
+    let centre = foot + away * (r + gap);
+    BrepScene {
+        name,
+        a: SceneObject::Profile(sphere(r)),
+        pose_a: pose(spin, centre),
+        b: SceneObject::Block { size },
+        pose_b: DPose3::IDENTITY,
+        expected: vec![ExpectedContact {
+            point_a: centre - away * r,
+            point_b: foot,
+            distance: gap,
+            normal: -away,
+        }],
+    }
+}
+
+/// A sphere (A, radius `r`, spun by `spin`) above the top face (z = size.z / 2) of a block (B,
+/// sides `size`, centred at the origin), its centre over (offset.x, offset.y) at height
+/// size.z / 2 + r + gap. One contact, at the face's point below the centre; requires the
+/// offset at least 1 mm inside the face, so that the face's edges are no nearer minima.
+#[must_use]
+pub fn sphere_on_block_face(
+    r: f64,
+    size: DVec3,
+    gap: f64,
+    offset: DVec2,
+    spin: DQuat,
+) -> BrepScene {
+    let foot = DVec3::new(offset.x, offset.y, 0.5 * size.z);
+    sphere_at_block(
+        format!("sphere_on_block_face(r {r}, size {size}, gap {gap}, offset {offset})"),
+        r,
+        size,
+        gap,
+        foot,
+        DVec3::Z,
+        spin,
+    )
+}
+
+/// A sphere (A, radius `r`, spun by `spin`) beside the block's edge x = size.x / 2,
+/// z = size.z / 2 (B, sides `size`, centred at the origin): its centre lies r + gap from the
+/// edge point (size.x / 2, along, size.z / 2) in the direction (cos angle, 0, sin angle),
+/// `angle` in (0, π/2) so that the edge point is the block's nearest point (the distance to a
+/// line). One contact at that edge point; |along| <= size.y / 2 − 1 keeps the corners beyond
+/// 1 mm of it.
+#[must_use]
+pub fn sphere_near_block_edge(
+    r: f64,
+    size: DVec3,
+    gap: f64,
+    angle: f64,
+    along: f64,
+    spin: DQuat,
+) -> BrepScene {
+    let foot = DVec3::new(0.5 * size.x, along, 0.5 * size.z);
+    sphere_at_block(
+        format!("sphere_near_block_edge(r {r}, size {size}, gap {gap}, angle {angle})"),
+        r,
+        size,
+        gap,
+        foot,
+        DVec3::new(angle.cos(), 0.0, angle.sin()),
+        spin,
+    )
+}
+
+/// A sphere (A, radius `r`, spun by `spin`) off the block's corner size / 2 (B, sides `size`,
+/// centred at the origin): its centre lies r + gap from the corner along `direction`, whose
+/// components must all be positive so that the corner is the block's nearest point (the
+/// distance to a point). One contact, at the corner.
+#[must_use]
+pub fn sphere_near_block_corner(
+    r: f64,
+    size: DVec3,
+    gap: f64,
+    direction: DVec3,
+    spin: DQuat,
+) -> BrepScene {
+    sphere_at_block(
+        format!("sphere_near_block_corner(r {r}, size {size}, gap {gap}, dir {direction})"),
+        r,
+        size,
+        gap,
+        0.5 * size,
+        direction.normalize(),
+        spin,
+    )
+}
+
+/// A sphere (A, radius `r` < `radius`, spun by `spin`) inside the cylindrical hole (radius
+/// `radius`, axis z) of a square plate (B, 4 radius wide, `thickness` thick along z, centred
+/// at the origin). The centre lies at height `height` and at `radius − r − gap` from the axis
+/// in the direction `azimuth` (rad) from x: one contact, on that radial line at the hole's
+/// wall, distance `gap` (the distance to a cylinder from inside). Requires
+/// |height| + r + 1 <= thickness / 2, so that the rims and faces stay beyond 1 mm.
+#[must_use]
+pub fn sphere_in_hole(
+    r: f64,
+    radius: f64,
+    thickness: f64,
+    gap: f64,
+    height: f64,
+    azimuth: f64,
+    spin: DQuat,
+) -> BrepScene {
+    let d = DVec3::new(azimuth.cos(), azimuth.sin(), 0.0);
+    let centre = d * (radius - r - gap) + DVec3::Z * height;
+    let point_a = centre + d * r;
+    BrepScene {
+        name: format!(
+            "sphere_in_hole(r {r}, R {radius}, thickness {thickness}, gap {gap}, height {height})"
+        ),
+        a: SceneObject::Profile(sphere(r)),
+        pose_a: pose(spin, centre),
+        b: holed_plate(4.0 * radius, thickness, radius),
+        pose_b: DPose3::IDENTITY,
+        expected: vec![ExpectedContact {
+            point_a,
+            point_b: point_a + d * gap,
+            distance: gap,
+            normal: d,
+        }],
+    }
+}
+
+/// A sphere (A, radius `r`, spun by `spin`) resting on the rim of the cylindrical hole (radius
+/// `radius`, axis z) of a square plate (B, 4 radius wide, `thickness` thick, centred at the
+/// origin): the rim is the circle where the plate's top face (z = thickness / 2, trimmed by
+/// the hole) meets the hole's wall. The centre lies r + gap from the rim point P at `azimuth`
+/// (rad, from x) along cos(tilt) (towards the axis) + sin(tilt) z, `tilt` in (0, π/2), a
+/// direction between the two faces' normals, so that P is the plate's nearest point (the
+/// distance to a circle edge). One contact at P; requires r + gap < radius.
+#[must_use]
+pub fn sphere_on_hole_rim(
+    r: f64,
+    radius: f64,
+    thickness: f64,
+    gap: f64,
+    tilt: f64,
+    azimuth: f64,
+    spin: DQuat,
+) -> BrepScene {
+    let radial = DVec3::new(azimuth.cos(), azimuth.sin(), 0.0);
+    let rim = radial * radius + DVec3::Z * (0.5 * thickness);
+    let away = -radial * tilt.cos() + DVec3::Z * tilt.sin();
+    let centre = rim + away * (r + gap);
+    BrepScene {
+        name: format!(
+            "sphere_on_hole_rim(r {r}, R {radius}, thickness {thickness}, gap {gap}, tilt {tilt})"
+        ),
+        a: SceneObject::Profile(sphere(r)),
+        pose_a: pose(spin, centre),
+        b: holed_plate(4.0 * radius, thickness, radius),
+        pose_b: DPose3::IDENTITY,
+        expected: vec![ExpectedContact {
+            point_a: centre - away * r,
+            point_b: rim,
+            distance: gap,
+            normal: -away,
+        }],
+    }
+}
+
+/// A sphere (A, radius `r`, spun by `spin`) nestled in the concave corner of an L-shaped
+/// bracket (B: geom-param's extrusion of the L with outer corner at the origin, arms 4 mm
+/// thick and 2 r + 10 long along x and y, from z = −(r + 3) to r + 3). The inner faces are the
+/// planes y = 4 (for x >= 4) and x = 4 (for y >= 4), meeting in a concave edge along z; the
+/// centre lies at (4 + r + gap, 4 + r + gap, `height`). Two contacts, one on each inner face,
+/// each at distance `gap`; the concave edge (√2 (r + gap) − r from the sphere) is no minimum.
+/// Requires |height| <= 2.
+#[must_use]
+pub fn sphere_in_l_corner(r: f64, gap: f64, height: f64, spin: DQuat) -> BrepScene {
+    let (t, a, h) = (4.0, 2.0 * r + 10.0, r + 3.0);
+    let line = |from: [f64; 2], to: [f64; 2]| PlanarSegment::Line {
+        from: DVec2::from(from),
+        to: DVec2::from(to),
+    };
+    let profile = PlanarProfile {
+        outer: vec![
+            line([0.0, 0.0], [a, 0.0]),
+            line([a, 0.0], [a, t]),
+            line([a, t], [t, t]),
+            line([t, t], [t, a]),
+            line([t, a], [0.0, a]),
+            line([0.0, a], [0.0, 0.0]),
+        ],
+        holes: Vec::new(),
+    };
+    let centre = DVec3::new(t + r + gap, t + r + gap, height);
+    let expected = [DVec3::X, DVec3::Y]
+        .map(|axis| {
+            let point_a = centre - axis * r;
+            ExpectedContact {
+                point_a,
+                point_b: point_a - axis * gap,
+                distance: gap,
+                normal: -axis,
+            }
+        })
+        .to_vec();
+    BrepScene {
+        name: format!("sphere_in_l_corner(r {r}, gap {gap}, height {height})"),
+        a: SceneObject::Profile(sphere(r)),
+        pose_a: pose(spin, centre),
+        b: SceneObject::Extrusion {
+            profile,
+            z0: -h,
+            z1: h,
+        },
         pose_b: DPose3::IDENTITY,
         expected,
     }

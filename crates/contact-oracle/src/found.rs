@@ -1,25 +1,61 @@
 //! A polished pair turned into a contact: signed distance, normal, and merging of duplicates.
 
 use crate::kdtree::KdTree;
-use crate::polish::{Eval, Pair};
+use crate::polish::{Eval, Polished};
 use crate::posed::PosedSolid;
 use crate::report::OracleContact;
+use geom_param::FeatureLocation;
 
-/// Builds the contact for a polished pair. The distance is |S_b − S_a| signed by A's outward
-/// normal; the normal is the unit connecting vector oriented so that
+/// Builds the contact for a polished pair. The distance is |S_b − S_a|, negative when
+/// `negative`; the normal is the unit connecting vector oriented so that
 /// point_b = point_a + distance · normal (A's face normal when the points coincide, which is
-/// also A's outward normal wherever the connecting vector is normal to A).
+/// also A's outward normal wherever the connecting vector is normal to A). Where A's point is
+/// on an edge or vertex, A has a cone of normals: the normal is minus B's face normal (for two
+/// edges, their common normal) where the connecting vector lies along it (to the residual) or
+/// the points coincide (within `snap`), otherwise the connecting vector, and for two
+/// coinciding points otherwise placed A's outward direction there
+/// ([`PosedSolid::sign_normal`]). Locations within `snap` (mm) of an edge or
+/// vertex of a trimmed face are reported on it ([`PosedSolid::location`]).
 pub(crate) fn contact(
     a: &PosedSolid,
-    pair: &Pair,
-    eval: &Eval,
-    residual: f64,
-    iterations: u32,
+    b: &PosedSolid,
+    polished: &Polished,
     negative: bool,
+    snap: f64,
 ) -> OracleContact {
+    let Polished {
+        pair,
+        eval,
+        residual,
+        iterations,
+        ..
+    } = polished;
+    let (residual, iterations) = (*residual, *iterations);
     let (pa, pb) = (eval.pa.point, eval.pb.point);
     let gap = pb - pa;
-    let face_normal = a.normal(pair.fa, pair.a[0], pair.a[1]);
+    // The normal the connecting vector must lie along (to the residual) to be replaced by it:
+    // A's face normal, or minus B's where A's point is on an edge or vertex and B's inside a
+    // face.
+    let location_a = a.location(pair.fa, pair.a, pair.held_a, snap);
+    let location_b = b.location(pair.fb, pair.b, pair.held_b, snap);
+    let outward_a = a.sign_normal(pair.fa, pair.a, pair.held_a);
+    let (face_normal, touching_normal) = match (location_a, location_b) {
+        (FeatureLocation::Face { .. }, _) => (a.normal(pair.fa, pair.a[0], pair.a[1]), None),
+        (_, FeatureLocation::Face { .. }) => (
+            b.normal(pair.fb, pair.b[0], pair.b[1]).map(|n| -n),
+            outward_a,
+        ),
+        // Two edges: their common normal, on A's outer side.
+        (FeatureLocation::Edge { id: ea, t: ta }, FeatureLocation::Edge { id: eb, t: tb }) => {
+            let common = a.eval_edge(ea, ta).d1.cross(b.eval_edge(eb, tb).d1);
+            let oriented = common
+                .try_normalize()
+                .zip(outward_a)
+                .map(|(n, o)| if n.dot(o) < 0.0 { -n } else { n });
+            (oriented, outward_a)
+        }
+        _ => (None, outward_a),
+    };
     let length = gap.length();
     let sign = if negative { -1.0 } else { 1.0 };
     let distance = sign * length;
@@ -27,11 +63,13 @@ pub(crate) fn contact(
     // residual); the connecting vector itself at an edge, where A has a cone of normals.
     let along =
         |n: glam::DVec3| (gap - n * gap.dot(n)).length() <= 1e3 * residual.max(1e-15 * length);
+    let on_face = matches!(location_a, FeatureLocation::Face { .. });
     let normal = match face_normal {
-        Some(n) if length == 0.0 || along(n) => n,
+        Some(n) if length == 0.0 || along(n) || (!on_face && length <= snap) => n,
         _ => (gap / distance)
             .try_normalize()
             .or(face_normal)
+            .or(touching_normal)
             .unwrap_or(glam::DVec3::Z),
     };
     OracleContact {
@@ -43,6 +81,8 @@ pub(crate) fn contact(
         params_a: pair.a,
         face_b: pair.fb,
         params_b: pair.b,
+        location_a,
+        location_b,
         residual,
         iterations,
     }

@@ -2,21 +2,37 @@
 //! the soak tests compare the pipeline with).
 //!
 //! Independence is the point: the oracle uses only geom-param's exact [`Solid`](geom_param::Solid) (faces'
-//! `Surface::eval` and domains, edge/vertex adjacency) and glam; no stage crate, no component
-//! meshes or hulls. Method:
+//! `Surface::eval` and domains, trims, edges' curves and uses, vertices, adjacency) and glam;
+//! no stage crate, no component meshes or hulls. Any B-rep: faces over their whole parameter
+//! rectangle (solids of revolution) or trimmed by loops of edges, edges closed or ending at
+//! vertices. Method:
 //!
 //! 1. Sample every face on a (u, v) grid with world spacing about [`OracleOptions::spacing`]
-//!    (boundary rows included), only near the other solid's bounding box (`sampling`).
+//!    (boundary rows included), only near the other solid's bounding box (`sampling`). A
+//!    trimmed face is gridded over its trim's box and keeps the samples inside the trim (a
+//!    grid of cells classified once answers away from the boundary, `trim_grid`; near it the
+//!    exact p-curves decide, a corner by its sector); the edges that run along no rectangle
+//!    side are sampled on their own curves, their end vertices (corners) included.
 //! 2. For each sample the nearest sample of the other solid (own kd-tree); samples whose
 //!    nearest distance is a discrete local minimum within 1.5 spacings are candidates, from
 //!    both sides (`local_minima`).
 //! 3. Each candidate is polished by Levenberg–Marquardt on f = ½|S_a − S_b|² over
 //!    (u_a, v_a, u_b, v_b) with bounds as active constraints, crossing edges and turning at
-//!    poles, and accepted when stationary (3-d residual), second-order (reduced Hessian PSD)
-//!    and not descending into a neighbouring face (`polish`).
+//!    poles (`polish`). On a trimmed face the bound is the trim: a step that leaves it stops
+//!    on the crossed edge, where the point is held with the edge's t as its parameter; from an
+//!    edge the polish moves into a face with descent, onto the end vertex when descent runs
+//!    past the end, and from a vertex along an edge or into a face with descent
+//!    (`feature_moves`). A minimum is accepted when stationary over the parameters of the
+//!    features it is on (3-d residual), second-order (reduced Hessian PSD over them) and not
+//!    descending into a neighbouring face, edge or vertex (at an edge or corner: the
+//!    connecting vector in the normal cone). Near touching, points involving a trimmed face,
+//!    an edge or a vertex are first pinned by the descent of step 4 (from either side).
 //! 4. Penetration: the deepest inside sample of each overlap region, and every crossing the
 //!    minimum search met, start a descent of A's signed distance to B; its minimum is the
-//!    witness, polished by plain Newton on ∇f = 0; from both sides (`penetration`).
+//!    witness, polished by plain Newton on ∇f = 0; from both sides (`penetration`). The
+//!    descent moves over trims, edges and vertices as the polish does (not across the sides
+//!    of a face without trim onto an edge shared with another such face), so a witness may lie
+//!    inside a trimmed face, on an edge or at a corner.
 //! 5. The whole search runs again at spacing / √2 on a shifted grid and the two sets are
 //!    compared ([`CrossCheck`]).
 //!
@@ -27,12 +43,20 @@
 //! f drops to zero a Newton step away); a minimum is dropped when either point has a nearer
 //! sample of the other solid than the pair's distance (a distance measured through a wall,
 //! past a nearer part of the surface); a witness whose Newton polish leaves the descent's depth (an apex
-//! polished onto the crossing curve) is kept at the descent's own pair.
+//! polished onto the crossing curve) is kept at the descent's own pair; two coinciding points
+//! are a touch (a contact at distance 0), not a crossing, when some direction lies in A's
+//! normal cone with its opposite in B's (a face's cone is its normal, an edge's the wedge of
+//! its faces' normals, a corner's the cone its edges allow).
 //!
 //! Known limits: two minima closer than about 1.5 spacings can merge into one; a penetration
-//! witness on an edge of A (or B, from B's side) is not reported (an apex is: it is a pole of
-//! its face); a non-isolated minimum (a circle or segment of equal distance) yields an
-//! arbitrary set of points on it.
+//! witness on an edge between two faces without trims (the ridges of solids of revolution)
+//! is not reported (an apex is: it is a pole of its face); nor is one where an edge of each
+//! solid pokes into the other (two ridges crossing: either edge's signed distance to the other
+//! solid has a kink, not a stationary point, at its deepest); a touch at distance 0 between a
+//! vertex and an edge or vertex counts as a crossing; the cones of edges and corners are
+//! read from the adjacent faces' tangent directions (at a corner from its edges), exact for
+//! convex edges and corners whose faces are less than 180° apart; a non-isolated minimum (a
+//! circle or segment of equal distance) yields an arbitrary set of points on it.
 
 // Index loops mirror the matrix notation of the small dense systems (H_ij, g_k).
 #![allow(clippy::needless_range_loop)]
@@ -40,7 +64,9 @@
 pub mod closed_form;
 mod cross_check;
 mod error;
+mod feature_moves;
 mod found;
+mod held;
 mod kdtree;
 mod linalg;
 mod local_minima;
@@ -51,6 +77,7 @@ mod polish;
 mod posed;
 mod report;
 mod sampling;
+mod trim_grid;
 
 pub use closed_form::{ClosedFormScene, ExpectedContact};
 pub use error::OracleError;

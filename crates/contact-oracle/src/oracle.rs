@@ -147,12 +147,13 @@ fn run(
         let outcome = local_minima::polish(a, b, start, spacing, &limits);
         match outcome {
             Outcome::Minimum(p) => {
-                let na = a.normal(p.pair.fa, p.pair.a[0], p.pair.a[1]);
+                let na = a.sign_normal(p.pair.fa, p.pair.a, p.pair.held_a);
                 let negative = na.is_some_and(|n| (p.eval.pb.point - p.eval.pa.point).dot(n) < 0.0);
                 if through_material(&p.eval, &ta, &tb, options.tolerance) {
                     continue;
                 }
-                merge(&mut contacts, to_contact(a, &p, negative), merge_radius);
+                let c = to_contact(a, b, &p, negative, options.tolerance);
+                merge(&mut contacts, c, merge_radius);
             }
             Outcome::Crossing(q) => crossings.push(q),
             Outcome::Rejected => {}
@@ -188,14 +189,15 @@ fn run(
             };
             let pair = if swapped { swap(&w.pair) } else { w.pair };
             let e = polish::evaluate(a, b, &pair);
-            let residual = polish::residual(&e, [true; 4], [false; 4]);
+            let residual = polish::residual(&e, pair.dims(), [false; 4]);
             let w = Polished {
                 pair,
                 eval: e,
                 residual,
                 ..w
             };
-            merge(&mut contacts, to_contact(a, &w, true), merge_radius);
+            let c = to_contact(a, b, &w, true, options.tolerance);
+            merge(&mut contacts, c, merge_radius);
         }
     }
     contacts.retain(|c| c.distance <= options.reach);
@@ -212,23 +214,22 @@ fn points(samples: &[Sample]) -> Vec<glam::DVec3> {
 }
 
 fn pair(sa: &Sample, sb: &Sample) -> Pair {
-    Pair {
-        fa: sa.face,
-        a: sa.uv,
-        fb: sb.face,
-        b: sb.uv,
-    }
+    Pair::faces(sa.face, sa.uv, sb.face, sb.uv)
 }
 
 fn swap(p: &Pair) -> Pair {
-    Pair {
-        fa: p.fb,
-        a: p.b,
-        fb: p.fa,
-        b: p.a,
-    }
+    p.swapped()
 }
 
-fn to_contact(a: &PosedSolid, p: &Polished, negative: bool) -> OracleContact {
-    contact(a, &p.pair, &p.eval, p.residual, p.iterations, negative)
+/// The contact of a polished pair; locations snap to edges and vertices within 10 x
+/// `tolerance` (the stationarity tolerance, mm).
+fn to_contact(
+    a: &PosedSolid,
+    b: &PosedSolid,
+    p: &Polished,
+    negative: bool,
+    tolerance: f64,
+) -> OracleContact {
+    let snap = 10.0 * tolerance;
+    contact(a, b, p, negative, snap)
 }

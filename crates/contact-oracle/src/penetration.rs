@@ -10,7 +10,13 @@
 //! Starts: the deepest sample of each connected region of A's samples inside B, and every
 //! crossing the minimum search ran into (a crossing too small to hold a sample is still found,
 //! since φ descends from the crossing into the overlap).
+//!
+//! On a trimmed face of A the descent stays inside the trim (a step that leaves it is refused),
+//! and a witness must lie inside it, away from its boundary; B's foot may be anywhere on B,
+//! its faces, edges and vertices ([`crate::polish::minimise`]).
 
+use crate::feature_moves::{self, MAX_SWITCHES, TrimStep};
+use crate::held::Held;
 use crate::kdtree::KdTree;
 use crate::linalg::{self, N};
 use crate::polish::{self, Limits, Pair, Polished};
@@ -36,14 +42,24 @@ fn phi(a: &PosedSolid, b: &PosedSolid, pair: Pair, limits: &Limits) -> Option<Ph
     if !p.converged {
         return None;
     }
-    let nb = b.normal(p.pair.fb, p.pair.b[0], p.pair.b[1])?;
     let e = &p.eval;
-    let value = if p.active[2] || p.active[3] {
-        // The foot is on an edge of B's face: the signed distance is |r| with the side of the
-        // face normal (exact for points beyond a ridge, whose foot is the ridge).
-        e.r.length().copysign(e.r.dot(nb))
+    let (value, nb) = if p.pair.held_b == Held::Face {
+        let nb = b.normal(p.pair.fb, p.pair.b[0], p.pair.b[1])?;
+        let value = if p.active[2] || p.active[3] {
+            // The foot is on an edge of B's face: the signed distance is |r| with the side of
+            // the face normal (exact for points beyond a ridge, whose foot is the ridge).
+            e.r.length().copysign(e.r.dot(nb))
+        } else {
+            e.r.dot(nb)
+        };
+        (value, nb)
     } else {
-        e.r.dot(nb)
+        // The foot is held on an edge or at a vertex of B: φ = ±|r|, outside where r points
+        // to the outer side of the adjacent faces; its gradient direction is r / φ.
+        let outward = b.sign_normal(p.pair.fb, p.pair.b, p.pair.held_b)?;
+        let value = e.r.length().copysign(e.r.dot(outward));
+        let nb = (e.r / value).try_normalize().unwrap_or(outward);
+        (value, nb)
     };
     Some(Phi {
         pair: p.pair,
@@ -81,12 +97,7 @@ pub(crate) fn signed_distances(
             continue;
         }
         seen[i] = true;
-        let start = Pair {
-            fa: s.face,
-            a: s.uv,
-            fb: o.face,
-            b: o.uv,
-        };
+        let start = Pair::faces(s.face, s.uv, o.face, o.uv);
         phis[i] = phi(a, b, start, limits);
         if phis[i].is_some_and(|p| p.value < 0.0) {
             queue.push(i);
@@ -101,11 +112,8 @@ pub(crate) fn signed_distances(
                 continue;
             }
             seen[k] = true;
-            let start = Pair {
-                fa: own[k].face,
-                a: own[k].uv,
-                ..from.pair
-            };
+            let mut start = from.pair;
+            (start.fa, start.a, start.held_a) = (own[k].face, own[k].uv, Held::Face);
             phis[k] = phi(a, b, start, limits);
             if phis[k].is_some_and(|p| p.value < 0.0) {
                 queue.push(k);
@@ -173,6 +181,13 @@ pub(crate) struct Descent {
 /// coordinates) and the gradient shrinks: near a touching contact (φ ≈ 0) φ is flat
 /// to rounding over a region where its gradient is still well resolved, so the gradient is
 /// what pins the point.
+///
+/// A's point descends over the features of A as [`polish::minimise`] moves over them: a step
+/// that leaves a trimmed face stops on the crossed edge (and must lower φ), the point then
+/// descends along the edge (t), onto its end vertex, and back into a face or along another
+/// edge wherever φ descends there (slope below −1e-11 per unit length). An edge or vertex is
+/// a minimum of φ when φ descends into none of its neighbours. (On a face without trim the
+/// descent stops at the rectangle's sides, as it always did.)
 pub(crate) fn descend(
     a: &PosedSolid,
     b: &PosedSolid,
@@ -180,6 +195,7 @@ pub(crate) fn descend(
     spacing: f64,
     limits: &Limits,
 ) -> Option<Descent> {
+    const ANGLE: f64 = 1e-11;
     let mut x = phi(a, b, start, limits)?;
     let angle = |x: &Phi| {
         (0..2)
@@ -188,14 +204,27 @@ pub(crate) fn descend(
             .fold(0.0, f64::max)
     };
     // φ is known to rounding: 64 ulp of the coordinates.
-    let coordinates = a.eval(x.pair.fa, x.pair.a[0], x.pair.a[1]).point.length();
+    let coordinates = a
+        .eval_held(x.pair.fa, x.pair.a, x.pair.held_a)
+        .point
+        .length();
     let flat = 64.0 * f64::EPSILON * (coordinates + spacing + x.value.abs());
     let mut mu = 1e-3;
     let mut hessian = [[0.0; N]; N];
     let mut stationary = false;
+    let mut switches = 0;
     for _ in 0..100 {
+        if switches < MAX_SWITCHES {
+            let moved = feature_moves::leave(a, b, &x.pair, [x.normal_b, None], ANGLE)
+                .and_then(|q| phi(a, b, q, limits));
+            if let Some(t) = moved {
+                x = t;
+                switches += 1;
+                continue;
+            }
+        }
         hessian = fd_hessian(a, b, &x, spacing, limits)?;
-        if angle(&x) <= 1e-11 {
+        if angle(&x) <= ANGLE {
             stationary = true;
             break;
         }
@@ -218,14 +247,55 @@ pub(crate) fn descend(
                 1.0
             };
             let mut trial = x.pair;
-            trial.a = a.normalize(
-                trial.fa,
-                [trial.a[0] + scale * delta[0], trial.a[1] + scale * delta[1]],
-            );
+            let mut cut = false;
+            if x.pair.held_a == Held::Face {
+                let raw = [trial.a[0] + scale * delta[0], trial.a[1] + scale * delta[1]];
+                trial.a = a.normalize(trial.fa, raw);
+                if !a.inside(trial.fa, trial.a) {
+                    // Out of A's trimmed face: the step stops on the edge it crosses; on the
+                    // boundary already, the point is held on its edge (a move, φ unchanged).
+                    let mut q = x.pair;
+                    q.a = raw;
+                    match feature_moves::cut_at_trims(a, b, &x.pair, q, [true, true, false, false])
+                    {
+                        TrimStep::Inside(q) | TrimStep::Cut(q) => {
+                            trial = polish::normalize(a, b, q);
+                            cut = true;
+                        }
+                        TrimStep::Hold(q, _) => {
+                            // Held on the edge unless φ descends into the face (then the
+                            // step is refused and damped towards the gradient).
+                            let stay = x.normal_b.is_some_and(|nb| {
+                                feature_moves::stays_in_face(a, q.held_a, nb, ANGLE)
+                            });
+                            let hold = switches < MAX_SWITCHES && !stay;
+                            let held = hold
+                                .then(|| phi(a, b, polish::normalize(a, b, q), limits))
+                                .flatten();
+                            if let Some(t) = held {
+                                x = t;
+                                switches += 1;
+                                accepted = true;
+                                break;
+                            }
+                            mu *= 8.0;
+                            continue;
+                        }
+                    }
+                } else if let Some(held) = feature_moves::side_edge_crossed(a, trial.fa, raw) {
+                    // Across a rectangle's side onto an edge of a general solid.
+                    trial.held_a = held;
+                    trial = polish::normalize(a, b, trial);
+                    cut = true;
+                }
+            } else {
+                polish::set(&mut trial, 0, polish::params(&x.pair, 0) + scale * delta[0]);
+                trial = polish::normalize(a, b, trial);
+            }
             match phi(a, b, trial, limits) {
                 Some(t)
                     if t.value < x.value
-                        || (t.value <= x.value + flat && angle(&t) < angle(&x)) =>
+                        || (!cut && t.value <= x.value + flat && angle(&t) < angle(&x)) =>
                 {
                     x = t;
                     mu = (mu * 0.3).max(1e-15);
@@ -242,7 +312,8 @@ pub(crate) fn descend(
     // Next to a pole the parametrisation is polar and the descent crawls: try the pole itself.
     let range = a.range(x.pair.fa, 1);
     for (bound, side) in [(range.min, ParamSide::VMin), (range.max, ParamSide::VMax)] {
-        let near = (x.pair.a[1] - bound).abs() <= 1e-3 * range.span();
+        let near =
+            (x.pair.a[1] - bound).abs() <= 1e-3 * range.span() && x.pair.held_a == Held::Face;
         if near && matches!(a.boundary(x.pair.fa, side), Boundary::Vertex(_)) {
             let mut pole = x.pair;
             pole.a[1] = bound;
@@ -256,21 +327,27 @@ pub(crate) fn descend(
             }
         }
     }
-    // A pole is a smooth interior point of the surface; edges are not.
-    let interior = a
-        .sides_at(x.pair.fa, x.pair.a, 0.0)
-        .into_iter()
-        .all(|side| matches!(a.boundary(x.pair.fa, side), Boundary::Vertex(_)));
-    let mut m = [[0.0; N]; N];
-    for i in 0..2 {
-        for j in 0..2 {
-            m[i][j] = hessian[i][j] / (x.speed[i] * x.speed[j]);
+    let (interior, convex) = if x.pair.held_a == Held::Face {
+        // A pole is a smooth interior point of the surface; edges (and trim boundaries) are
+        // not.
+        let interior = a.interior(x.pair.fa, x.pair.a);
+        let mut m = [[0.0; N]; N];
+        for i in 0..2 {
+            for j in 0..2 {
+                m[i][j] = hessian[i][j] / (x.speed[i] * x.speed[j]);
+            }
         }
-    }
-    // At a pole (|S_u| -> 0) the normalised Hessian is meaningless; the pole test above
-    // already required no descent in any direction.
-    let usable = x.speed[0] > 1e-9 * x.speed[1] && x.speed[1] > 1e-9 * x.speed[0];
-    let convex = !usable || linalg::min_eigenvalue(&m, 2) >= -1e-6;
+        // At a pole (|S_u| -> 0) the normalised Hessian is meaningless; the pole test above
+        // already required no descent in any direction.
+        let usable = x.speed[0] > 1e-9 * x.speed[1] && x.speed[1] > 1e-9 * x.speed[0];
+        (interior, !usable || linalg::min_eigenvalue(&m, 2) >= -1e-6)
+    } else {
+        // On an edge or at a vertex: no descent into a neighbouring feature (the normal cone
+        // condition), and on an edge φ'' >= 0 along it.
+        let settled = feature_moves::leave(a, b, &x.pair, [x.normal_b, None], ANGLE).is_none();
+        let curved = x.speed[0] == 0.0 || hessian[0][0] / (x.speed[0] * x.speed[0]) >= -1e-6;
+        (settled, curved)
+    };
     Some(Descent {
         pair: x.pair,
         value: x.value,
@@ -316,7 +393,15 @@ pub(crate) fn witness(
     let polished = polish::stationary(a, b, d.pair, limits);
     let near = a.eval(d.pair.fa, d.pair.a[0], d.pair.a[1]).point;
     let same_depth = (polished.eval.r.length() - d.value.abs()).abs() <= 10.0 * limits.tolerance;
-    if polished.converged && same_depth && polished.eval.pa.point.distance(near) <= spacing {
+    // Newton is unconstrained: a free point must still lie in its face's region.
+    let q = &polished.pair;
+    let in_regions = (q.held_a != Held::Face || a.inside(q.fa, q.a))
+        && (q.held_b != Held::Face || b.inside(q.fb, q.b));
+    if polished.converged
+        && same_depth
+        && in_regions
+        && polished.eval.pa.point.distance(near) <= spacing
+    {
         return Some(polished);
     }
     Some(settled(a, b, d.pair, polished.iterations, limits))
@@ -331,7 +416,7 @@ pub(crate) fn settled(
     limits: &Limits,
 ) -> Polished {
     let e = polish::evaluate(a, b, &pair);
-    let residual = polish::residual(&e, [true; N], [false; N]);
+    let residual = polish::residual(&e, pair.dims(), [false; N]);
     Polished {
         pair,
         eval: e,
@@ -342,7 +427,8 @@ pub(crate) fn settled(
     }
 }
 
-/// Central-difference Hessian of φ from its exact gradient (steps of about 1e-4 spacing in 3-d).
+/// Central-difference Hessian of φ from its exact gradient (steps of about 1e-4 spacing in 3-d)
+/// over the parameters of A's feature (u, v on a face, t on an edge, none at a vertex).
 fn fd_hessian(
     a: &PosedSolid,
     b: &PosedSolid,
@@ -351,25 +437,31 @@ fn fd_hessian(
     limits: &Limits,
 ) -> Option<[[f64; N]; N]> {
     let mut h = [[0.0; N]; N];
-    for k in 0..2 {
+    let dims = x.pair.held_a.dims();
+    for k in (0..2).filter(|&k| dims[k]) {
         let step = if x.speed[k] > 1e-9 * spacing {
             1e-4 * spacing / x.speed[k]
         } else {
             1e-6
         };
-        let range = a.range(x.pair.fa, k);
-        let mut lo = x.pair;
-        let mut hi = x.pair;
-        hi.a[k] += step;
-        lo.a[k] -= step;
+        let range = match x.pair.held_a {
+            Held::Edge { edge, .. } => a.solid.edge(edge).curve.domain(),
+            _ => a.range(x.pair.fa, k),
+        };
+        let at = polish::params(&x.pair, k);
+        let (mut up, mut down) = (at + step, at - step);
         if !range.periodic {
-            hi.a[k] = hi.a[k].min(range.max);
-            lo.a[k] = lo.a[k].max(range.min);
+            up = up.min(range.max);
+            down = down.max(range.min);
         }
-        let width = hi.a[k] - lo.a[k];
+        let width = up - down;
         if width <= 0.0 {
             return None;
         }
+        let mut lo = x.pair;
+        let mut hi = x.pair;
+        polish::set(&mut hi, k, up);
+        polish::set(&mut lo, k, down);
         let (gp, gm) = (phi(a, b, hi, limits)?, phi(a, b, lo, limits)?);
         for j in 0..2 {
             h[j][k] = (gp.g[j] - gm.g[j]) / width;

@@ -9,11 +9,22 @@
 //!   (that is how minima on ridge edges are found). At an edge the polish carries on across it
 //!   when f descends into the neighbouring face; at a pole or apex it turns the running
 //!   parameter towards the steepest descent into the face.
+//!   On a trimmed face the region is the trim instead: a step that leaves it stops where it
+//!   crosses the boundary and the point is held on the crossed edge, with the edge's t as its
+//!   one parameter ([`crate::feature_moves`]); from an edge the polish moves into either face
+//!   when f descends into it, onto the end vertex when descent runs past the edge's end, and
+//!   from a vertex along any edge or into any face there with descent.
 //! - [`stationary`]: plain Newton on ∇f = 0 (penetration witnesses are saddles of f).
+//!
+//! A point held on an edge or at a vertex ([`Held`]) keeps its slots: the edge's t is the
+//! first parameter of its solid (its column the curve's tangent, its second derivative the
+//! curve's), the second slot (both at a vertex) does not exist and is never free.
 //!
 //! Residuals are measured in 3-d: |g_k| / |c_k| is the component of the connecting vector
 //! along parameter direction k, which stays meaningful at a pole where |c_k| -> 0.
 
+use crate::feature_moves::{self, MAX_SWITCHES, TrimStep};
+use crate::held::Held;
 use crate::linalg::{self, N};
 use crate::posed::PosedSolid;
 use geom_param::{Boundary, FaceId, ParamSide, SurfacePoint};
@@ -24,13 +35,76 @@ const MAX_MOVES: u32 = 16;
 /// Directions probed at a pole or apex for descent into the face.
 const POLE_DIRECTIONS: usize = 32;
 
-/// A pair of face points: A's face and (u, v), B's face and (u, v).
+/// A pair of points: A's face and (u, v), B's face and (u, v), and for each whether it is free
+/// on that face or held on an edge or vertex of it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Pair {
     pub fa: FaceId,
     pub a: [f64; 2],
     pub fb: FaceId,
     pub b: [f64; 2],
+    pub held_a: Held,
+    pub held_b: Held,
+}
+
+impl Pair {
+    /// Two points free on their faces.
+    pub fn faces(fa: FaceId, a: [f64; 2], fb: FaceId, b: [f64; 2]) -> Self {
+        Self {
+            fa,
+            a,
+            fb,
+            b,
+            held_a: Held::Face,
+            held_b: Held::Face,
+        }
+    }
+
+    /// A's point (`on_a`) or B's: face, (u, v), feature.
+    pub fn side(&self, on_a: bool) -> (FaceId, [f64; 2], Held) {
+        if on_a {
+            (self.fa, self.a, self.held_a)
+        } else {
+            (self.fb, self.b, self.held_b)
+        }
+    }
+
+    /// Replaces A's point (`on_a`) or B's.
+    pub fn set_side(&mut self, on_a: bool, face: FaceId, uv: [f64; 2], held: Held) {
+        if on_a {
+            (self.fa, self.a, self.held_a) = (face, uv, held);
+        } else {
+            (self.fb, self.b, self.held_b) = (face, uv, held);
+        }
+    }
+
+    /// The parameters that exist (see [`Held::dims`]): A's two, then B's two.
+    pub fn dims(&self) -> [bool; N] {
+        let (a, b) = (self.held_a.dims(), self.held_b.dims());
+        [a[0], a[1], b[0], b[1]]
+    }
+
+    /// Both points free on their faces.
+    pub fn on_faces(&self) -> bool {
+        self.held_a == Held::Face && self.held_b == Held::Face
+    }
+
+    /// B's point first.
+    pub fn swapped(&self) -> Self {
+        Self {
+            fa: self.fb,
+            a: self.b,
+            fb: self.fa,
+            b: self.a,
+            held_a: self.held_b,
+            held_b: self.held_a,
+        }
+    }
+}
+
+/// `x` and `y`, slot by slot.
+pub(crate) fn both(x: [bool; N], y: [bool; N]) -> [bool; N] {
+    std::array::from_fn(|k| x[k] && y[k])
 }
 
 /// Stopping rules shared by the polishers.
@@ -64,8 +138,8 @@ impl Eval {
 
 /// Evaluates f, its gradient and exact Hessian.
 pub(crate) fn evaluate(a: &PosedSolid, b: &PosedSolid, p: &Pair) -> Eval {
-    let pa = a.eval(p.fa, p.a[0], p.a[1]);
-    let pb = b.eval(p.fb, p.b[0], p.b[1]);
+    let pa = a.eval_held(p.fa, p.a, p.held_a);
+    let pb = b.eval_held(p.fb, p.b, p.held_b);
     let r = pa.point - pb.point;
     let cols = [pa.du, pa.dv, -pb.du, -pb.dv];
     let mut g = [0.0; N];
@@ -113,28 +187,61 @@ fn split(k: usize) -> (bool, usize) {
     (k < 2, k % 2)
 }
 
-fn params(p: &Pair, k: usize) -> f64 {
-    if k < 2 { p.a[k] } else { p.b[k - 2] }
-}
-
-fn set(p: &mut Pair, k: usize, value: f64) {
-    if k < 2 {
-        p.a[k] = value;
-    } else {
-        p.b[k - 2] = value;
+/// Parameter `k` of the pair: a face's u or v, an edge's t (slot 0), 0 where none exists.
+pub(crate) fn params(p: &Pair, k: usize) -> f64 {
+    let (on_a, i) = split(k);
+    let (_, uv, held) = p.side(on_a);
+    match held {
+        Held::Face => uv[i],
+        Held::Edge { t, .. } if i == 0 => t,
+        _ => 0.0,
     }
 }
 
-fn normalize(a: &PosedSolid, b: &PosedSolid, mut p: Pair) -> Pair {
-    p.a = a.normalize(p.fa, p.a);
-    p.b = b.normalize(p.fb, p.b);
+/// Sets parameter `k` (ignored where it does not exist).
+pub(crate) fn set(p: &mut Pair, k: usize, value: f64) {
+    let (on_a, i) = split(k);
+    let held = if on_a { &mut p.held_a } else { &mut p.held_b };
+    match held {
+        Held::Face => {
+            if on_a {
+                p.a[i] = value;
+            } else {
+                p.b[i] = value;
+            }
+        }
+        Held::Edge { t, .. } if i == 0 => *t = value,
+        _ => {}
+    }
+}
+
+/// Wraps periodic parameters and clamps the others into their face's domain (an edge's t into
+/// the curve's); a point held on an edge gets its use's (u, v) at t.
+pub(crate) fn normalize(a: &PosedSolid, b: &PosedSolid, mut p: Pair) -> Pair {
+    for (on_a, solid) in [(true, a), (false, b)] {
+        let (face, uv, held) = p.side(on_a);
+        match held {
+            Held::Face => p.set_side(on_a, face, solid.normalize(face, uv), held),
+            Held::Edge { edge, t, use_index } => {
+                let t = solid.solid.edge(edge).curve.domain().normalize(t);
+                let use_ = solid.solid.edge(edge).uses[use_index];
+                let held = Held::Edge { edge, t, use_index };
+                p.set_side(on_a, use_.face, solid.use_params(&use_, t), held);
+            }
+            Held::Vertex(_) => {}
+        }
+    }
     p
 }
 
-/// The side parameter `k` sits on, if it is at a bound of a non-periodic range.
+/// The side parameter `k` sits on, if it is at a bound of a non-periodic range of a face
+/// without trim (a trimmed face's region is its trim, see [`feature_moves`]).
 fn side_of(a: &PosedSolid, b: &PosedSolid, p: &Pair, k: usize) -> Option<ParamSide> {
     let (on_a, i) = split(k);
     let (solid, face) = if on_a { (a, p.fa) } else { (b, p.fb) };
+    if p.side(on_a).2 != Held::Face || solid.trim(face).is_some() {
+        return None;
+    }
     let range = solid.range(face, i);
     if range.periodic {
         return None;
@@ -235,10 +342,9 @@ fn hop_across(
 ) -> Option<Pair> {
     let (on_a, _) = split(k);
     let (solid, face, uv) = if on_a { (a, p.fa, p.a) } else { (b, p.fb, p.b) };
-    let (other, other_side, other_uv) = solid.across(face, side, uv)?;
-    let sp = solid.side_param(other, other_side);
+    let (other, other_uv, into) = solid.across(face, side, uv)?;
     let s = solid.eval(other, other_uv[0], other_uv[1]);
-    let w = if sp.index == 0 { s.du } else { s.dv } * sp.inward;
+    let w = s.du * into.x + s.dv * into.y;
     let len = w.length();
     if len == 0.0 || directional(e, k, w / len) >= -tolerance {
         return None;
@@ -266,6 +372,9 @@ fn vertex_snap(
     let mut q = *p;
     let mut snapped = false;
     for k in [1, 3].into_iter().filter(|&k| movable[k]) {
+        if p.side(k < 2).2 != Held::Face {
+            continue;
+        }
         let (solid, face) = if k == 1 { (a, p.fa) } else { (b, p.fb) };
         let range = solid.range(face, 1);
         let v = params(p, k);
@@ -293,11 +402,15 @@ pub(crate) fn minimise(
     movable: [bool; N],
     limits: &Limits,
 ) -> Polished {
-    let mut p = normalize(a, b, start);
+    let mut p = feature_moves::enter_trims(a, b, normalize(a, b, start), movable);
     let mut e = evaluate(a, b, &p);
     let mut mu = 1e-3;
     let mut iterations = 1_u32;
     let mut moves = 0_u32;
+    // Moves between a face, an edge and a vertex (trimmed faces, edges with ends), and whether
+    // one was due when their count ran out.
+    let mut switches = 0_u32;
+    let mut blocked = false;
     // 3-d length of the last attempted step: near a touching contact (gap -> 0) f is quartic
     // along the common tangent, the residual is tiny long before the points settle, so the
     // polish also waits for the steps to die out (linear convergence, ratio 2/3). A damped
@@ -307,10 +420,24 @@ pub(crate) fn minimise(
     // told from a crossing by the normals (`local_minima::polish`).
     let mut last_step = f64::INFINITY;
     loop {
+        // Off an edge or vertex where f descends into a neighbouring feature.
+        let mut moved = false;
+        // f changes by r · w when A's point moves by w, by −r · w when B's does.
+        let rates = [movable[0].then_some(e.r), movable[2].then_some(-e.r)];
+        if let Some(q) = feature_moves::leave(a, b, &p, rates, limits.tolerance) {
+            if switches < MAX_SWITCHES {
+                p = q;
+                switches += 1;
+                moved = true;
+            } else {
+                blocked = true;
+            }
+        }
+        // The parameters that exist and may move.
+        let mv = both(movable, p.dims());
         // Active set: movable parameters at a bound whose descent direction leaves the face.
         let mut active = [false; N];
-        let mut moved = false;
-        for k in (0..N).filter(|&k| movable[k]) {
+        for k in (0..N).filter(|&k| mv[k] && !moved) {
             let Some(side) = side_of(a, b, &p, k) else {
                 continue;
             };
@@ -355,10 +482,10 @@ pub(crate) fn minimise(
             last_step = f64::INFINITY;
             continue;
         }
-        let res = residual(&e, movable, active);
+        let res = residual(&e, mv, active);
         let settled = last_step <= 100.0 * limits.tolerance
             && (e.r.length() <= 10.0 * limits.tolerance
-                || newton_reach(&e, movable, active).is_none_or(|s| s <= 100.0 * limits.tolerance));
+                || newton_reach(&e, mv, active).is_none_or(|s| s <= 100.0 * limits.tolerance));
         if res <= limits.tolerance && settled {
             // Settled next to a pole or apex, where the parametrisation is polar and the steps
             // crawl: if the vertex itself is no farther (to rounding), carry on from there.
@@ -395,7 +522,7 @@ pub(crate) fn minimise(
                         residual: res,
                         active,
                         iterations,
-                        converged: hop.is_none(),
+                        converged: hop.is_none() && !blocked,
                     };
                 }
             }
@@ -407,11 +534,11 @@ pub(crate) fn minimise(
                 residual: res,
                 active,
                 iterations,
-                converged: res <= limits.tolerance,
+                converged: res <= limits.tolerance && !blocked,
             };
         }
         // Damped Newton step on the free parameters.
-        let free: Vec<usize> = (0..N).filter(|&k| movable[k] && !active[k]).collect();
+        let free: Vec<usize> = (0..N).filter(|&k| mv[k] && !active[k]).collect();
         let n = free.len();
         let (m, rhs) = reduced_system(&e, &free, |speed2, floor| mu * speed2.max(floor));
         iterations += 1;
@@ -430,17 +557,47 @@ pub(crate) fn minimise(
         for (i, &k) in free.iter().enumerate() {
             set(&mut q, k, params(&p, k) + scale * delta[i]);
         }
+        // A step that leaves a trimmed face stops on the edge it crosses; one that leaves it
+        // where it starts holds the point on that edge (as a side's bound becomes active).
+        let (q, cut) = match feature_moves::cut_at_trims(a, b, &p, q, mv) {
+            TrimStep::Inside(q) => (q, false),
+            TrimStep::Cut(q) => (q, true),
+            TrimStep::Hold(q, on_a) => {
+                // Held on the edge only where f does not descend into the face (as a side's
+                // bound is active only where the gradient points out, and as `leave` releases
+                // the point exactly where it does): otherwise the step is refused and damped
+                // towards the gradient, which points in.
+                let rate = if on_a { e.r } else { -e.r };
+                let solid = if on_a { a } else { b };
+                let stay =
+                    feature_moves::stays_in_face(solid, q.side(on_a).2, rate, limits.tolerance);
+                if stay || switches >= MAX_SWITCHES {
+                    mu *= 8.0;
+                } else {
+                    p = normalize(a, b, q);
+                    switches += 1;
+                    e = evaluate(a, b, &p);
+                    last_step = f64::INFINITY;
+                }
+                continue;
+            }
+        };
         let q = normalize(a, b, q);
         let trial = evaluate(a, b, &q);
         // f is only known to rounding (64 ulp of the coordinates times |r|); inside that band
         // a step counts as progress when it lowers the residual, which stays well resolved
         // (without this, LM stalls at residual ~ sqrt(stiffness x rounding) near a shallow
-        // minimum).
+        // minimum). A step cut at a trim must lower f: otherwise a point released from an edge
+        // could be cut back onto it without end.
         let coordinates = e.pa.point.length().max(e.pb.point.length());
         let rounding = 64.0 * f64::EPSILON * coordinates * e.r.length();
-        let progress = trial.f() <= e.f()
-            || (trial.f() <= e.f() + rounding
-                && residual(&trial, movable, active) < residual(&e, movable, active));
+        let progress = if cut {
+            trial.f() < e.f()
+        } else {
+            trial.f() <= e.f()
+                || (trial.f() <= e.f() + rounding
+                    && residual(&trial, mv, active) < residual(&e, mv, active))
+        };
         if progress {
             p = q;
             e = trial;
@@ -509,10 +666,11 @@ fn point_reach(e: &Eval, free: &[usize], delta: &[f64; N]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Plain Newton on ∇f = 0 over all four parameters (no bounds are active: a witness is an
-/// interior stationary point), with backtracking on the squared residual.
+/// Plain Newton on ∇f = 0 over all the pair's parameters (no bounds are active: a witness is
+/// an interior stationary point; a point held on an edge moves along it only), with
+/// backtracking on the squared residual.
 pub(crate) fn stationary(a: &PosedSolid, b: &PosedSolid, start: Pair, limits: &Limits) -> Polished {
-    let all = [true; N];
+    let all = start.dims();
     let none = [false; N];
     let merit = |e: &Eval| {
         let scale = e.cols.iter().map(|c| c.length()).fold(0.0, f64::max);
@@ -539,9 +697,9 @@ pub(crate) fn stationary(a: &PosedSolid, b: &PosedSolid, start: Pair, limits: &L
             };
         }
         // Tiny Levenberg damping only where the plain system is singular (a pole's u).
-        let every: [usize; N] = std::array::from_fn(|k| k);
+        let every: Vec<usize> = (0..N).filter(|&k| all[k]).collect();
         let (m, rhs) = reduced_system(&e, &every, pole_damping);
-        let Some(delta) = linalg::solve(&m, &rhs, N) else {
+        let Some(delta) = linalg::solve(&m, &rhs, every.len()) else {
             return Polished {
                 pair: p,
                 eval: e,
@@ -561,8 +719,8 @@ pub(crate) fn stationary(a: &PosedSolid, b: &PosedSolid, start: Pair, limits: &L
         let mut accepted = false;
         for _ in 0..20 {
             let mut q = p;
-            for k in 0..N {
-                set(&mut q, k, params(&p, k) + scale * delta[k]);
+            for (i, &k) in every.iter().enumerate() {
+                set(&mut q, k, params(&p, k) + scale * delta[i]);
             }
             let q = normalize(a, b, q);
             let trial = evaluate(a, b, &q);

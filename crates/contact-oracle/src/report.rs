@@ -1,6 +1,6 @@
 //! What the oracle returns.
 
-use geom_param::{DVec3, FaceId};
+use geom_param::{DVec3, FaceId, FeatureLocation};
 
 /// One local minimum of distance (distance >= 0) or one penetration witness (distance < 0),
 /// in the world frame.
@@ -12,16 +12,23 @@ pub struct OracleContact {
     pub point_b: DVec3,
     /// Signed distance (mm): positive apart, negative for a penetration witness (the depth).
     pub distance: f64,
-    /// A's unit outward normal at `point_a` (world).
+    /// A's unit outward normal at `point_a` (world); where `point_a` is on an edge or at a
+    /// vertex of A (a cone of normals), the direction from `point_a` to `point_b` (sign
+    /// included), which lies in that cone.
     pub normal: DVec3,
-    /// A's face holding `point_a`.
+    /// A's face holding `point_a` (on an edge or at a vertex: a face it bounds).
     pub face_a: FaceId,
     /// (u, v) of `point_a` on `face_a`.
     pub params_a: [f64; 2],
-    /// B's face holding `point_b`.
+    /// B's face holding `point_b` (on an edge or at a vertex: a face it bounds).
     pub face_b: FaceId,
     /// (u, v) of `point_b` on `face_b`.
     pub params_b: [f64; 2],
+    /// The exact feature of A that `point_a` is on: a face (where the point is inside the
+    /// face's region), an edge with its t, or a vertex.
+    pub location_a: FeatureLocation,
+    /// The exact feature of B that `point_b` is on.
+    pub location_b: FeatureLocation,
     /// Stationarity residual (mm): the largest tangential component of `point_b - point_a`
     /// along the free parameter directions of either face.
     pub residual: f64,

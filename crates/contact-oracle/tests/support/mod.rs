@@ -2,8 +2,11 @@
 //! oracle report with a closed-form scene.
 #![allow(dead_code)] // each test binary uses a different subset
 
-use contact_oracle::{ClosedFormScene, OracleContact, OracleOptions, OracleReport, find_contacts};
-use geom_param::{DPose3, DQuat, DVec3};
+use contact_oracle::closed_form::BrepScene;
+use contact_oracle::{
+    ClosedFormScene, ExpectedContact, OracleContact, OracleOptions, OracleReport, find_contacts,
+};
+use geom_param::{DPose3, DQuat, DVec3, Solid};
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a tiny, seedable PRNG.
 pub struct Rng(pub u64);
@@ -77,13 +80,48 @@ pub fn check_scene(
     point_tol: f64,
 ) -> (OracleReport, Errors) {
     let (a, b) = scene.solids().expect("closed-form profiles are valid");
-    let options = OracleOptions::for_solids(&a, &b, 1.0);
-    let report =
-        find_contacts(&a, &scene.pose_a, &b, &scene.pose_b, &options).expect("oracle runs");
-    let what = &scene.name;
+    check_solids(
+        &scene.name,
+        (&a, &scene.pose_a),
+        (&b, &scene.pose_b),
+        &scene.expected,
+        distance_tol,
+        point_tol,
+    )
+}
+
+/// [`check_scene`] for a scene with solids built face by face.
+pub fn check_brep_scene(
+    scene: &BrepScene,
+    distance_tol: f64,
+    point_tol: f64,
+) -> (OracleReport, Errors) {
+    let (a, b) = scene.solids().expect("closed-form solids are valid");
+    check_solids(
+        &scene.name,
+        (&a, &scene.pose_a),
+        (&b, &scene.pose_b),
+        &scene.expected,
+        distance_tol,
+        point_tol,
+    )
+}
+
+/// The oracle with reach 1 mm on two posed solids against the `expected` contacts (see
+/// [`check_scene`]).
+pub fn check_solids(
+    what: &str,
+    (a, pose_a): (&Solid, &DPose3),
+    (b, pose_b): (&Solid, &DPose3),
+    expected: &[ExpectedContact],
+    distance_tol: f64,
+    point_tol: f64,
+) -> (OracleReport, Errors) {
+    let options = OracleOptions::for_solids(a, b, 1.0);
+    let report = find_contacts(a, pose_a, b, pose_b, &options).expect("oracle runs");
     assert_eq!(
         report.contacts.len(),
-        scene.expected.len(),
+        expected.len(),
         "{what}: contacts {:#?}",
         report.contacts
     );
@@ -93,7 +131,7 @@ pub fn check_scene(
         report.cross_check
     );
     let mut errors = Errors::default();
-    for e in &scene.expected {
+    for e in expected {
         let c: &OracleContact = report
             .contacts
             .iter()
