@@ -221,7 +221,9 @@ impl Trim {
     /// included within `tolerance` (parameter units).
     ///
     /// Away from the boundary (farther than the polylines' flatness) the polylines' winding
-    /// number decides; nearer, the side of the exact p-curve at the nearest exact point does.
+    /// number decides; nearer, the side of the exact p-curve at the nearest exact point does,
+    /// and where that point is a corner (two entries' common end), the corner's sector: the left
+    /// of both entries' directions there at a convex corner, of either at a reflex one.
     #[must_use]
     pub fn contains(&self, uv: DVec2, tolerance: f64) -> bool {
         let uv = self.unwrap(uv);
@@ -236,10 +238,45 @@ impl Trim {
         if near.distance > band {
             return self.winding(uv) != 0;
         }
-        let entry = &self.loops[near.loop_index].entries[near.index];
-        let d1 = entry.pcurve.eval(near.t).d1;
-        let along = if entry.reversed { -d1 } else { d1 };
-        along.perp_dot(uv - near.point) > 0.0
+        let l = &self.loops[near.loop_index];
+        let entry = &l.entries[near.index];
+        let range = entry.pcurve.domain();
+        let at_end = |t: f64| (t - near.t).abs() <= 1e-12 * range.span();
+        // The traversal direction of an entry at one of its parameters.
+        let along = |e: &TrimEntry, t: f64| {
+            let d1 = e.pcurve.eval(t).d1;
+            if e.reversed { -d1 } else { d1 }
+        };
+        let w = uv - near.point;
+        let left = |d: DVec2| d.perp_dot(w) > 0.0;
+        // At a corner the nearest point is the end of two entries: the face is the sector on
+        // the left of both directions (a convex corner) or of either (a reflex one).
+        let corner = if at_end(range.max) || at_end(range.min) {
+            let n = l.entries.len();
+            let leaving = at_end(range.max) != entry.reversed;
+            let (before, after) = if leaving {
+                (entry, &l.entries[(near.index + 1) % n])
+            } else {
+                (&l.entries[(near.index + n - 1) % n], entry)
+            };
+            let end_t = |e: &TrimEntry, start: bool| {
+                let r = e.pcurve.domain();
+                if start != e.reversed { r.min } else { r.max }
+            };
+            Some((
+                along(before, end_t(before, false)),
+                along(after, end_t(after, true)),
+            ))
+        } else {
+            None
+        };
+        match corner {
+            Some((incoming, outgoing)) if incoming.perp_dot(outgoing) >= 0.0 => {
+                left(incoming) && left(outgoing)
+            }
+            Some((incoming, outgoing)) => left(incoming) || left(outgoing),
+            None => left(along(entry, near.t)),
+        }
     }
 
     /// The exact boundary point nearest to `uv` (after [`Trim::unwrap`]), or `None` for a trim
