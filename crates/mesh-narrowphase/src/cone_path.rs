@@ -156,12 +156,9 @@ pub(crate) fn cone_path(
         }
     }
     let mesh_reach = delta2.max(0.0) + errors + allowance;
-    // Closest leaf pairs first; a leaf pair whose two balls already hold a candidate's points
-    // would be merged with it below (its radius is at least its balls'), so it is skipped
-    // before its closest points are computed.
-    traversal
-        .leaves
-        .sort_unstable_by(|x, y| x.lower.total_cmp(&y.lower));
+    // A leaf pair whose two balls already hold a candidate's points would be merged with it
+    // below (its radius is at least its balls'), so it is skipped before its closest points are
+    // computed.
     let first_leaf = found.len();
     for leaf in traversal.leaves.iter().filter(|l| l.critical) {
         if let Some(pair) = triangle_pair(tree_a, tree_b, leaf.a, leaf.b) {
@@ -219,7 +216,7 @@ pub(crate) fn cone_path(
     }
 
     // 3. One seed per minimum, closest first.
-    found.sort_by(|x, y| x.rank.0.cmp(&y.rank.0).then(x.rank.1.total_cmp(&y.rank.1)));
+    found.sort_unstable_by(|x, y| x.rank.0.cmp(&y.rank.0).then(x.rank.1.total_cmp(&y.rank.1)));
     kept.clear();
     made.clear();
     for (i, f) in found.iter().enumerate() {
@@ -246,7 +243,7 @@ pub(crate) fn cone_path(
             made.push((f.rank.1, seed));
         }
     }
-    made.sort_by(|x, y| x.0.total_cmp(&y.0));
+    made.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
     out.seeds.extend(made.iter().map(|m| m.1));
     out.stats.regions += u32::try_from(made.len()).unwrap_or(u32::MAX);
     if meshes_intersect {
@@ -411,7 +408,8 @@ fn node_seed(side: &Side<'_>, tree: &PatchTree, point: DVec3, snap: f64) -> Opti
 }
 
 /// The point of the pieces under `node` nearest to `point` (the tree's frame): a depth-first
-/// search that skips subtrees whose balls lie farther than the best distance so far.
+/// search, nearer child first, that skips subtrees whose balls lie farther than the best
+/// distance so far.
 fn nearest_piece(tree: &PatchTree, node: u32, point: DVec3) -> Option<(&Piece, TrianglePoint)> {
     let mut best: Option<(&Piece, TrianglePoint, f64)> = None;
     // The tree is balanced: depth below 64 for any mesh that fits in memory.
@@ -440,8 +438,21 @@ fn nearest_piece(tree: &PatchTree, node: u32, point: DVec3) -> Option<(&Piece, T
             }
             PatchLeaf::Inner => {
                 if depth + 2 <= stack.len() {
-                    stack[depth] = i + 1;
-                    stack[depth + 1] = n.right;
+                    // The nearer child on top, so that the first leaves reached bound the rest.
+                    let (near, far) = match (
+                        tree.nodes.get(i as usize + 1),
+                        tree.nodes.get(n.right as usize),
+                    ) {
+                        (Some(l), Some(r))
+                            if l.centre.distance_squared(point)
+                                > r.centre.distance_squared(point) =>
+                        {
+                            (n.right, i + 1)
+                        }
+                        _ => (i + 1, n.right),
+                    };
+                    stack[depth] = far;
+                    stack[depth + 1] = near;
                     depth += 2;
                 }
             }

@@ -136,7 +136,12 @@ impl NormalCone {
     /// Whether the two caps share a direction: angle(axis1, axis2) <= θ1 + θ2.
     #[must_use]
     pub fn meets(&self, other: &Self) -> bool {
-        // cos and sin of θ1 + θ2; a sum beyond π (negative sine) covers every axis angle.
+        // A whole sphere meets everything (and two of them would wrap θ1 + θ2 = 2π to 0 below).
+        if self.is_all() || other.is_all() {
+            return true;
+        }
+        // cos and sin of θ1 + θ2 in [0, 2π); a sum of π or more (negative sine, or cosine -1)
+        // covers every axis angle.
         let cos_sum = self.cos * other.cos - self.sin * other.sin;
         let sin_sum = self.sin * other.cos + self.cos * other.sin;
         if sin_sum < 0.0 || cos_sum <= -1.0 {
@@ -334,6 +339,41 @@ impl CriticalKinds {
                 && shared
                 && minus_band_a.meets(directions)
                 && band_b.meets(directions),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Caps against their definition: two caps meet when the angle between their axes is at
+    /// most the sum of their half-angles (whole spheres included), and do not when it exceeds
+    /// it by more than the test's slack (1e-12 on the cosine, about 1.4e-6 rad next to
+    /// opposite axes), which may only err towards meeting.
+    #[test]
+    fn caps_meet_as_their_angles_say() {
+        let angles = [0.0, 0.3, 1.2, 1.5707963, 2.0, 3.0, std::f64::consts::PI];
+        let axes = [
+            DVec3::Z,
+            DVec3::X,
+            -DVec3::Z,
+            DVec3::new(1.0, 1.0, 0.3).normalize(),
+        ];
+        for &t1 in &angles {
+            for &t2 in &angles {
+                for &a1 in &axes {
+                    for &a2 in &axes {
+                        let (c1, c2) = (NormalCone::new(a1, t1), NormalCone::new(a2, t2));
+                        let gap = a1.angle_between(a2) - (t1 + t2);
+                        if gap <= 0.0 {
+                            assert!(c1.meets(&c2), "{t1} {t2} {a1} {a2}");
+                        } else if gap > 1e-5 {
+                            assert!(!c1.meets(&c2), "{t1} {t2} {a1} {a2}");
+                        }
+                    }
+                }
+            }
         }
     }
 }

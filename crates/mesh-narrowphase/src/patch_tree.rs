@@ -166,12 +166,13 @@ const MAX_BISECTIONS: u32 = 12;
 /// the normals themselves is far below it.
 const NORMAL_FLOOR: f64 = 1e-6;
 
-/// Fraction of the angular spread of a piece's face normals (at its corners) added to its
-/// cone: the exact normal inside the piece lies, to first order, in the spherical triangle
-/// of the corner normals (the normal map is smooth and the piece small against the
-/// curvature radius), which the sampled cap already contains; half the spread covers the second
-/// order with a wide margin.
-const INTERIOR_SPREAD: f64 = 0.5;
+/// Fraction of the angular spread of a piece's sampled face normals (at its corners, edge
+/// midpoints and centroid) added to its cone: the exact normal inside the piece lies, to first
+/// order, in the spherical hull of the corner normals (the normal map is smooth and the piece
+/// small against the curvature radius), which the sampled cap already contains; the samples
+/// inside the piece catch the second-order bending of the normal map, and between samples half
+/// a piece apart what is left is of third order, far below a tenth of the spread.
+const INTERIOR_SPREAD: f64 = 0.1;
 
 /// Per-leaf data gathered before the tree is built.
 struct Item {
@@ -211,8 +212,8 @@ impl PatchTree {
     /// Builds the hierarchy of `mesh`, a component mesh of `solid`.
     ///
     /// Normals per piece: the exact outward normal of the triangle's face at each corner's
-    /// parameters (`Surface::normal`), the cone about them widened by half their spread
-    /// (`INTERIOR_SPREAD`); where a corner lies on an edge or vertex of the solid, the mesh's
+    /// parameters (`Surface::normal`) and at its edge midpoints and centroid, the cone about them
+    /// widened by a tenth of their spread (`INTERIOR_SPREAD`); where a corner lies on an edge or vertex of the solid, the mesh's
     /// vertex normal too (the mean of the faces' normals there, interpolated along a crease's
     /// chord), so the pieces on either side of a crease together cover its arc of normals. A
     /// corner where the face has no normal is an apex: its pieces keep only their other corners'
@@ -543,14 +544,34 @@ fn piece_item(
             None => apex_normals.push((vertex, face_normals.to_vec())),
         }
     }
-    let spread = face_normals
-        .iter()
-        .flat_map(|a| face_normals.iter().map(move |b| a.angle_between(*b)))
-        .fold(0.0, f64::max);
-    let mut all = [DVec3::ZERO; 6];
+    // The face's normals inside the piece too: at its edge midpoints and centroid.
+    let mut all = [DVec3::ZERO; 10];
     all[..face_count].copy_from_slice(face_normals);
-    all[face_count..face_count + extra_count].copy_from_slice(&extra[..extra_count]);
-    let cone = NormalCone::bounding(&all[..face_count + extra_count])
+    let mut count = face_count;
+    let inside = [
+        (piece.barycentric[0] + piece.barycentric[1]) * 0.5,
+        (piece.barycentric[1] + piece.barycentric[2]) * 0.5,
+        (piece.barycentric[2] + piece.barycentric[0]) * 0.5,
+        (piece.barycentric[0] + piece.barycentric[1] + piece.barycentric[2]) / 3.0,
+    ];
+    for b in inside {
+        let uv = DVec2::from(params[0]) * b.x
+            + DVec2::from(params[1]) * b.y
+            + DVec2::from(params[2]) * b.z;
+        if let Some(n) = surface.normal(du.normalize(uv.x), dv.normalize(uv.y)) {
+            if n.is_finite() {
+                all[count] = n;
+                count += 1;
+            }
+        }
+    }
+    let sampled = &all[..count];
+    let spread = sampled
+        .iter()
+        .flat_map(|a| sampled.iter().map(move |b| a.angle_between(*b)))
+        .fold(0.0, f64::max);
+    all[count..count + extra_count].copy_from_slice(&extra[..extra_count]);
+    let cone = NormalCone::bounding(&all[..count + extra_count])
         .widened(INTERIOR_SPREAD * spread + NORMAL_FLOOR);
     Item {
         corners: piece.corners,

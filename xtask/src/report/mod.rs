@@ -16,7 +16,7 @@ pub mod stage2_comparison;
 pub mod stage_growth;
 pub mod stage_times;
 pub mod timing;
-mod writer;
+pub mod writer;
 
 use accuracy_scene::{
     AccuracyScene, PAPER_SCENES, closed_form_scene, closed_form_scenes, paper_scene,

@@ -16,15 +16,25 @@ use std::fmt::Write as _;
 
 /// Everything one run measured.
 pub struct ReportData<'a> {
+    /// The machine it ran on.
     pub machine: MachineInfo,
+    /// What was measured.
     pub settings: &'a ReportSettings,
+    /// Error against time per scene, with its figure's file name.
     pub accuracy: &'a [(&'a AccuracyScene, Vec<Measurement>, String)],
+    /// The paper's Table 1 beside ours.
     pub table1: &'a [Table1Row],
+    /// Fig. 2 and Table 2.
     pub random: &'a RandomQueryTables,
+    /// Table 3.
     pub table3: &'a [SceneTimes],
+    /// Growth with mesh resolution, per paper scene.
     pub growth_resolution: &'a [(&'static str, Vec<GrowthRow>)],
+    /// Growth with the number of components.
     pub growth_components: &'a [GrowthRow],
+    /// Stage 2's two paths side by side.
     pub stage2: &'a [ComparisonRow],
+    /// Pictures per paper scene.
     pub pictures: &'a [(&'static str, String)],
 }
 
@@ -442,8 +452,9 @@ fn stage_section(s: &mut String, data: &ReportData<'_>) {
     stage2_section(s, data.stage2);
 }
 
-/// Stage 2's two paths side by side (see `stage2_comparison`).
-fn stage2_section(s: &mut String, rows: &[ComparisonRow]) {
+/// Stage 2's two paths side by side (see `stage2_comparison`): the report's section, also
+/// printed alone by `cargo xtask stage2`.
+pub fn stage2_section(s: &mut String, rows: &[ComparisonRow]) {
     let _ = writeln!(
         s,
         "### Stage 2: proxy regions against normal cones\n\nEvery fixture scene and the report's concave scenes, queried in one run with Stage 2 on the proxy-mesh path (`ConcavePath::ProxyRegions`, before issue 15) and on the normal-cone patch hierarchy (`ConcavePath::NormalCones`, the default), the three timings interleaved query by query. *Warm*: the same scratch across queries (GJK warm starts, and for the normal cones the traversal front of the previous query, carried under its motion certificate: here the pose does not move); *cold*: a fresh scratch for every query (a pose never seen). Medians in µs; ratios are proxy / normal cones.\n"
