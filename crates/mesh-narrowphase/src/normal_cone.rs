@@ -353,7 +353,7 @@ mod tests {
     /// opposite axes), which may only err towards meeting.
     #[test]
     fn caps_meet_as_their_angles_say() {
-        let angles = [0.0, 0.3, 1.2, 1.5707963, 2.0, 3.0, std::f64::consts::PI];
+        let angles = [0.0, 0.3, 1.2, 1.5, 2.0, 3.0, std::f64::consts::PI];
         let axes = [
             DVec3::Z,
             DVec3::X,
