@@ -1,6 +1,7 @@
 //! Project automation. `cargo xtask fixtures` writes `fixtures/`; `cargo xtask report` measures
-//! and writes `docs/REPORT.md` with its figures (see `xtask::report`); `cargo xtask soak N`
-//! runs the random near-contact soak (see `xtask::soak`).
+//! and writes `docs/REPORT.md` with its figures (see `xtask::report`); `cargo xtask stage2`
+//! prints the report's table of Stage 2's two paths alone; `cargo xtask soak N` runs the random
+//! near-contact soak (see `xtask::soak`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -11,6 +12,7 @@ use xtask::soak::table::{render, totals};
 
 const USAGE: &str = "usage: cargo xtask fixtures\n       \
 cargo xtask report [--quick] [--out DIR]\n       \
+cargo xtask stage2 [REPETITIONS]\n       \
 cargo xtask soak N [--seed S] [--pairs a-b,c-d,...] [--general]\n       \
 cargo xtask soak --replay a-b:SEED";
 
@@ -42,6 +44,22 @@ fn report(args: &[String]) -> Result<(), String> {
     }
     write_report(&root, &out, &settings)?;
     eprintln!("report: wrote {}", out.join("REPORT.md").display());
+    Ok(())
+}
+
+/// Measures Stage 2's two paths on every fixture scene and the report's concave scenes in one
+/// run and prints the report's table (markdown).
+fn stage2(args: &[String]) -> Result<(), String> {
+    let repetitions = match args.first() {
+        Some(n) => n
+            .parse()
+            .map_err(|e| format!("bad repetitions `{n}`: {e}"))?,
+        None => 201,
+    };
+    let rows = xtask::report::stage2_comparison::measure(&workspace_root(), repetitions)?;
+    let mut text = String::new();
+    xtask::report::writer::stage2_section(&mut text, &rows);
+    print!("{text}");
     Ok(())
 }
 
@@ -109,6 +127,7 @@ fn main() -> ExitCode {
         Some("fixtures") => xtask::write_fixtures(&workspace_root()).map(|()| true),
         Some("report") => report(&args[1..]).map(|()| true),
         Some("soak") => soak(&args[1..]),
+        Some("stage2") => stage2(&args[1..]).map(|()| true),
         _ => Err(USAGE.to_string()),
     };
     match result {

@@ -24,6 +24,7 @@ fn quick_report_writes_every_section_and_figure() {
         "## 3. Where the time goes",
         "### Growth with mesh resolution",
         "### Growth with the number of components",
+        "### Stage 2: proxy regions against normal cones",
         "## 4. Pictures",
     ] {
         assert!(text.contains(heading), "missing section {heading:?}");

@@ -7,14 +7,24 @@
 //!   map that hill-climbs over the hull's vertex adjacency and warm-starts from the last frame
 //!   ([`hill_climb_support`]).
 //! - Pairs with a concave component (and convex pairs whose hulls overlap, since a hull is not
-//!   its surface): exact triangle-triangle tests ([`triangle_intersection`]) over a simultaneous
-//!   traversal of triangle trees ([`triangle_bvh`]), first mesh against mesh (penetration), then
-//!   an outward-offset proxy mesh ([`proxy_mesh`]) against the other mesh; the colliding
-//!   triangles are grouped into connected regions whose intersection loops give the centres
-//!   p_ci ([`collision_regions`]), projected onto both meshes into seeds ([`seeds`]).
+//!   its surface), by default: a hierarchy of exact surface patches per component
+//!   ([`patch_tree`]: mesh pieces with deviation bounds, normal cones and bands
+//!   ([`normal_cone`]), curvature tensors), traversed pairwise ([`cone_traversal`]) with the
+//!   band as a distance cutoff and normal cones ruling out critical pairs of the distance; pairs
+//!   certified to hold one minimum at most are seeded from second-order models, the leaf pairs
+//!   left from their closest points ([`triangle_distance`]), and overlapping leaves get exact
+//!   triangle tests ([`triangle_intersection`]). Each component pair's traversal front is kept
+//!   for the next query ([`cone_front`]).
+//! - The paper's proxy-mesh path, selectable ([`ConcavePath::ProxyRegions`]): exact
+//!   triangle-triangle tests over a simultaneous traversal of triangle trees
+//!   ([`triangle_bvh`]), first mesh against mesh (penetration), then an outward-offset proxy
+//!   mesh ([`proxy_mesh`]) against the other mesh; the colliding triangles are grouped into
+//!   connected regions whose intersection loops give the centres p_ci ([`collision_regions`]),
+//!   projected onto both meshes into seeds ([`seeds`]).
 //!
 //! The boundary is the [`MeshPhase`] trait ([`mesh_phase`]); [`MeshNarrowphase`] is its default
-//! implementation ([`default_phase`]).
+//! implementation ([`default_phase`]), whose [`MeshNarrowphaseOptions::concave_path`] selects
+//! the triangle path.
 //!
 //! What this crate deliberately does not know: how component pairs were found (Stage 1), how
 //! seeds are refined into exact closest points and what contact means for them (Stage 3), and
@@ -22,18 +32,27 @@
 //! correspondences in `geom-param`. It depends on no other stage crate.
 
 pub mod collision_regions;
+pub mod cone_front;
+mod cone_path;
+pub mod cone_traversal;
 pub mod convex_pair;
 pub mod default_phase;
 pub mod hill_climb_support;
+mod mesh_intersections;
 pub mod mesh_phase;
+pub mod normal_cone;
+pub mod patch_tree;
 pub mod plane_filter;
 pub mod prepared_object;
 pub mod proxy_mesh;
+mod proxy_path;
+mod query_side;
 pub mod seeds;
 pub mod triangle_bvh;
+pub mod triangle_distance;
 pub mod triangle_intersection;
 
-pub use default_phase::{MeshNarrowphase, MeshNarrowphaseOptions, MeshScratch};
+pub use default_phase::{ConcavePath, MeshNarrowphase, MeshNarrowphaseOptions, MeshScratch};
 pub use mesh_phase::{
     ComponentRef, ContactBand, MeshInputError, MeshOutput, MeshPhase, MeshStats, MeshVerdict,
     RegionProbes,

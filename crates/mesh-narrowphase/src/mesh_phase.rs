@@ -64,27 +64,30 @@ pub struct ComponentRef<'a, P> {
 ///
 /// # Verdicts
 /// Let e_A, e_B be the components' measured chordal errors ([`geom_param::ComponentMesh::chordal_error`]).
-/// - [`MeshVerdict::Separated`]: no point of the two meshes is within `delta2 + e_A + e_B` of
-///   the other (so no exact points are within `delta2`): for convex pairs, the hulls are
-///   farther apart than that; otherwise no triangle of the other mesh reaches the proxy, the
-///   mesh offset outwards by `max(delta2, 0) + e_A + e_B` plus a rounding allowance of
-///   1e-9 of the component's size (see the triangle path).
+/// - [`MeshVerdict::Separated`]: the components hold no contact within `delta2`. For convex
+///   pairs, the hulls are farther apart than `delta2 + e_A + e_B` (so no exact points are within
+///   `delta2`). On the triangle paths see there: with the normal cones (the default), no
+///   critical pair of the solids' distance lies between the two components within `delta2` and
+///   no tested triangles intersect; with the proxy regions, no point of the two meshes is within
+///   `delta2 + e_A + e_B` of the other.
 /// - [`MeshVerdict::Penetrating`]: the two meshes intersect (exact predicates);
-///   [`MeshOutput::penetrating_pairs`] lists every intersecting (triangle of A, triangle of B)
-///   pair and [`MeshOutput::penetration_centres`] one witness point per connected region.
-///   [`MeshOutput::seeds`] also gets one seed per region (the centre projected onto both meshes)
-///   so that the caller can confirm the penetration on the exact surfaces: a mesh of a concave
-///   surface lies up to its chordal error *outside* the exact surface (its chords bridge the
-///   hollow), so intersecting meshes prove an exact penetration only deeper than e_A + e_B.
-///   The proxy pass below still runs and adds its seeds, so that the pair's other contacts are
-///   not lost when the overlap turns out to be a shallow contact.
+///   [`MeshOutput::penetrating_pairs`] lists intersecting (triangle of A, triangle of B) pairs
+///   (every one with the proxy regions; those where the normal-cone traversal reached triangles
+///   with the normal cones, see there) and [`MeshOutput::penetration_centres`] one witness point
+///   per connected region of them. [`MeshOutput::seeds`] also gets one seed per region (the
+///   centre projected onto both meshes) so that the caller can confirm the penetration on the
+///   exact surfaces: a mesh of a concave surface lies up to its chordal error *outside* the
+///   exact surface (its chords bridge the hollow), so intersecting meshes prove an exact
+///   penetration only deeper than e_A + e_B. The seeds of the pair's contacts are added too, so
+///   that they are not lost when the overlap turns out to be a shallow contact.
 ///   Stage 2 reports penetration only from intersecting meshes: a mesh distance in
 ///   (0, δ1) is passed on as seeds, and Stage 3 classifies the exact distance against δ1.
-/// - [`MeshVerdict::Seeds`]: the meshes do not intersect and are within the band (plus the
-///   chordal errors); [`MeshOutput::seeds`] has at least one seed. Each seed names on each side a
-///   point on the mesh, and the exact feature and parameters that point corresponds to
-///   (interpolated linearly from the triangle's corner parameters, which are unwrapped per
-///   triangle across the periodic seam, so u may lie outside [0, 2π)).
+/// - [`MeshVerdict::Seeds`]: the meshes do not intersect where tested and may hold a contact;
+///   [`MeshOutput::seeds`] has at least one seed. Each seed names on each side a point on the
+///   mesh, and the exact feature and parameters that point corresponds to (interpolated
+///   linearly from the triangle's corner parameters, which are unwrapped per triangle across the
+///   periodic seam, so u may lie outside [0, 2π); a mesh vertex on a vertex of the solid, a pole
+///   or apex, is that vertex).
 /// - [`MeshVerdict::InvalidInput`]: the band or pose is unusable (non-finite, or
 ///   `margin < delta2`) or a component id is out of range; `out` is left empty.
 ///
@@ -100,7 +103,40 @@ pub struct ComponentRef<'a, P> {
 /// cavity), so the pair falls back to the triangle path below. A pair whose GJK does not
 /// converge within its iteration cap falls back to the triangle path as well.
 ///
-/// # Triangle path (a concave component, or the convex fallback)
+/// # Triangle path: normal cones ([`crate::ConcavePath::NormalCones`], the default)
+/// A simultaneous traversal of the two components' patch trees ([`crate::patch_tree`]): every
+/// node bounds the exact surface of its mesh pieces by a ball and a slab along its normal cone's
+/// axis (the pieces grown by a bound on their distance to the surface, at most the chordal
+/// error), and all its outward normals, crease normals included, by a cap and a band
+/// ([`crate::normal_cone`]). A node pair is dropped when its volumes are farther apart than
+/// `max(delta2, 0)` (plus a rounding allowance of 1e-9 of the components' sizes), or when they
+/// do not overlap and the cones rule out both kinds of critical pair of the distance (a
+/// separated local minimum has opposite normals along the connecting direction, a penetration
+/// witness the reverse; Johnson & Cohen). A pair whose two patches are smooth, narrow-coned and
+/// whose curvature tensors make the gap between them strictly convex is *certified*: it holds
+/// one minimum at most, and stops there ([`crate::cone_traversal::certifiable`]). The rest
+/// descend to leaf pairs. Apexes (points where a face has no tangent plane) are traversed as
+/// points against the other tree. Then
+/// 1. leaf pairs whose volumes overlap get the exact triangle-triangle test (intersecting
+///    meshes, as above);
+/// 2. each certified pair gives a candidate where the second-order models of its two patches
+///    (an exact point and normal, the mean curvature tensor) are closest; each leaf pair that may
+///    hold a critical pair, the closest points of its two mesh pieces (or of an apex and a
+///    piece);
+/// 3. candidates standing for the same minimum are merged (within a quarter of the certified
+///    pair's smaller ball, or the leaf's ball), and each one left becomes a seed: its predicted
+///    points moved to the nearest mesh points, closest first.
+///
+/// Minima, not collision regions, are what is searched: two minima close together get a seed
+/// each (no pair holding both is certified), and the cost follows the geometry of the contacts
+/// rather than the number of triangles. The scratch keeps each component pair's traversal front
+/// ([`crate::cone_front`]): the next query re-tests only the node pairs whose margins the motion
+/// of B since then may have used up, and the others not dropped by distance.
+/// What a pair of components reports is a critical pair of the solids' distance: a component
+/// pair's own closest points on the boundary between components, where the solids are not at a
+/// minimum, are no seed (the neighbouring component pair holds the solids' minimum).
+///
+/// # Triangle path: proxy regions ([`crate::ConcavePath::ProxyRegions`], the paper's)
 /// 1. Every intersecting triangle pair between the two meshes, by a simultaneous traversal of
 ///    the components' triangle BVHs and an exact triangle-triangle test: any pair means
 ///    penetrating meshes (one seed per region; see the verdicts).
@@ -137,9 +173,11 @@ pub struct ComponentRef<'a, P> {
 /// # Panics
 /// Never on any input values; `out` is cleared first and every output is finite.
 pub trait MeshPhase {
-    /// Per-object preprocessing (triangle BVHs; lazily built proxy meshes behind OnceLock, keyed by offset).
+    /// Per-object preprocessing (triangle BVHs, patch trees; lazily built proxy meshes behind
+    /// OnceLock, keyed by offset).
     type Prepared: Send + Sync;
-    /// Caller-owned scratch and warm-start state (e.g. last GJK support vertices per component pair).
+    /// Caller-owned scratch and warm-start state (e.g. last GJK support vertices and traversal
+    /// fronts per component pair).
     type Scratch: Default + Send;
 
     /// Builds the per-object data (done once per object, shared by all queries).
@@ -211,6 +249,13 @@ pub struct MeshStats {
     /// Whether the convex pair fell back to the triangle path (hulls overlapping, or GJK not
     /// converged).
     pub convex_fallback: bool,
+    /// Patch-tree node pairs examined ([`crate::ConcavePath::NormalCones`]).
+    pub node_pairs_visited: u32,
+    /// Patch-tree node pairs certified to hold one minimum at most, each seeded from its
+    /// models ([`crate::ConcavePath::NormalCones`]).
+    pub certified_pairs: u32,
+    /// Whether this query built a patch tree (convex components build theirs on first use).
+    pub patches_built: bool,
 }
 
 /// What a query produces besides its verdict. Reuse one across queries: it is cleared, not

@@ -1,14 +1,16 @@
-//! Per-object preprocessing of the default mesh phase: a triangle tree per component and a
-//! lazily filled proxy cache.
+//! Per-object preprocessing of the default mesh phase: a triangle tree per component, a patch
+//! tree per component, and a lazily filled proxy cache.
 
+use crate::patch_tree::PatchTree;
 use crate::proxy_mesh::ProxyCache;
 use crate::triangle_bvh::TriangleBvh;
-use geom_param::ObjectModel;
+use geom_param::{ComponentKind, ComponentMesh, ObjectModel, Solid};
+use std::sync::OnceLock;
 
 /// What [`crate::MeshNarrowphase`] prepares for one object.
 #[derive(Debug)]
 pub struct PreparedObject {
-    /// Per component (indexed by `ComponentId`): its triangle tree and proxies.
+    /// Per component (indexed by `ComponentId`): its triangle tree, patch tree and proxies.
     pub components: Vec<PreparedComponent>,
 }
 
@@ -17,28 +19,58 @@ pub struct PreparedObject {
 pub struct PreparedComponent {
     /// Tree over the component mesh's triangles (object frame).
     pub bvh: TriangleBvh,
-    /// Proxy meshes, built on first use.
+    /// The hierarchy of exact patches with normal cones ([`PatchTree`]): built with the object
+    /// for concave components, on first use for convex ones (which need it only when their
+    /// hulls overlap another's).
+    pub patch_tree: OnceLock<PatchTree>,
+    /// Proxy meshes, built on first use (only by [`crate::ConcavePath::ProxyRegions`]).
     pub proxies: ProxyCache,
     /// Largest coordinate magnitude of the mesh (mm): the scale of relative tolerances.
     pub size: f64,
 }
 
+impl PreparedComponent {
+    /// The patch tree of this component (whose mesh is `mesh`, of `solid`), building it on first
+    /// use; the flag says whether this call built it.
+    pub fn patches(&self, mesh: &ComponentMesh, solid: &Solid) -> (&PatchTree, bool) {
+        let mut built = false;
+        let tree = self.patch_tree.get_or_init(|| {
+            built = true;
+            PatchTree::build(mesh, solid)
+        });
+        (tree, built)
+    }
+}
+
 impl PreparedObject {
-    /// Builds the triangle trees of all of `object`'s components (proxies come later, lazily).
+    /// Builds the triangle trees of all of `object`'s components and the patch trees of its
+    /// concave ones (convex components' patch trees and all proxies come later, lazily).
     #[must_use]
     pub fn new(object: &ObjectModel) -> Self {
         let components = object
             .meshes
             .iter()
-            .map(|m| PreparedComponent {
-                bvh: TriangleBvh::new(&m.positions, &m.triangles),
-                proxies: ProxyCache::default(),
-                size: m
-                    .positions
-                    .iter()
-                    .map(|p| p.abs().max_element())
-                    .filter(|x| x.is_finite())
-                    .fold(0.0, f64::max),
+            .enumerate()
+            .map(|(i, m)| {
+                let patch_tree = OnceLock::new();
+                if object
+                    .components
+                    .get(i)
+                    .is_some_and(|c| c.kind == ComponentKind::Concave)
+                {
+                    let _ = patch_tree.set(PatchTree::build(m, &object.solid));
+                }
+                PreparedComponent {
+                    bvh: TriangleBvh::new(&m.positions, &m.triangles),
+                    patch_tree,
+                    proxies: ProxyCache::default(),
+                    size: m
+                        .positions
+                        .iter()
+                        .map(|p| p.abs().max_element())
+                        .filter(|x| x.is_finite())
+                        .fold(0.0, f64::max),
+                }
             })
             .collect();
         Self { components }

@@ -1,12 +1,16 @@
-//! Every colliding triangle pair is found: the BVH traversals against brute force over all
-//! triangle pairs, on random poses; and refused inputs.
+//! Against brute force over all triangle pairs, on random poses: the proxy path finds every
+//! colliding triangle pair; the normal-cone path reports only true ones, never calls
+//! intersecting meshes separated, and seeds the meshes' closest pair whenever it is within the
+//! band; and refused inputs.
 
 mod common;
 
 use common::*;
 use geom_param::{ComponentId, DPose3, DQuat, DVec3, ObjectModel};
 use mesh_narrowphase::triangle_intersection::triangles_intersect;
-use mesh_narrowphase::{ContactBand, MeshInputError, MeshScratch, MeshVerdict};
+use mesh_narrowphase::{ConcavePath, ContactBand, MeshInputError, MeshScratch, MeshVerdict};
+use parry3d_f64::query::{ClosestPoints, closest_points};
+use parry3d_f64::shape::Triangle;
 
 fn band() -> ContactBand {
     ContactBand {
@@ -73,7 +77,14 @@ fn check_pairs(
             &mesh_b.triangles,
             &pose,
         );
-        let (verdict, out) = query(a, ca, b, cb, &pose, &band(), &mut scratch);
+        let (verdict, out) = query_path(
+            ConcavePath::ProxyRegions,
+            (a, ca),
+            (b, cb),
+            &pose,
+            &band(),
+            &mut scratch,
+        );
         if truth.is_empty() {
             assert_ne!(verdict, MeshVerdict::Penetrating);
         } else {
@@ -83,6 +94,25 @@ fn check_pairs(
             got.dedup();
             assert_eq!(got, truth);
             penetrating += 1;
+        }
+        // The normal-cone path stops at certified patch pairs without testing their
+        // triangles, so it reports a subset, and intersecting meshes are never "separated".
+        let (verdict, out) = query_path(
+            ConcavePath::NormalCones,
+            (a, ca),
+            (b, cb),
+            &pose,
+            &band(),
+            &mut scratch,
+        );
+        for pair in &out.penetrating_pairs {
+            assert!(
+                truth.binary_search(pair).is_ok(),
+                "{pair:?} does not intersect"
+            );
+        }
+        if !truth.is_empty() {
+            assert_ne!(verdict, MeshVerdict::Separated);
         }
         // Each side's proxy against the other's mesh, through the public tree API.
         let offset = 0.7;
@@ -217,4 +247,176 @@ fn plane_filter_never_contradicts_the_exact_test() {
         }
     }
     assert!(apart > 10_000, "the filter never fired: {apart}");
+}
+
+/// How two meshes lie, by brute force.
+enum Closest {
+    /// Some triangles intersect.
+    Intersecting,
+    /// No pair is within the reach.
+    Far,
+    /// The closest pair: distance and points (A's frame).
+    Pair(f64, DVec3, DVec3),
+}
+
+/// The closest pair of points between the two meshes (B's positions moved by `pose`), by brute
+/// force: every triangle pair whose boxes are within `reach`, measured by parry's GJK (code this
+/// crate does not share).
+fn brute_closest(
+    (positions_a, triangles_a): (&[DVec3], &[[u32; 3]]),
+    (positions_b, triangles_b): (&[DVec3], &[[u32; 3]]),
+    pose: &DPose3,
+    reach: f64,
+) -> Closest {
+    let moved: Vec<DVec3> = positions_b.iter().map(|p| *pose * *p).collect();
+    let boxes = |positions: &[DVec3], triangles: &[[u32; 3]]| -> Vec<(DVec3, DVec3, [DVec3; 3])> {
+        triangles
+            .iter()
+            .map(|t| {
+                let c = t.map(|k| positions[k as usize]);
+                (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]), c)
+            })
+            .collect()
+    };
+    let (ba, bb) = (boxes(positions_a, triangles_a), boxes(&moved, triangles_b));
+    let mut best: Option<(f64, DVec3, DVec3)> = None;
+    for (lo_a, hi_a, ta) in &ba {
+        for (lo_b, hi_b, tb) in &bb {
+            let gap = (*lo_b - *hi_a).max(*lo_a - *hi_b).max(DVec3::ZERO).length();
+            if gap > reach {
+                continue;
+            }
+            if triangles_intersect(ta, tb) {
+                return Closest::Intersecting;
+            }
+            let identity = DPose3::IDENTITY;
+            let (t1, t2) = (
+                Triangle::new(ta[0], ta[1], ta[2]),
+                Triangle::new(tb[0], tb[1], tb[2]),
+            );
+            if let Ok(ClosestPoints::WithinMargin(p, q)) =
+                closest_points(&identity, &t1, &identity, &t2, reach)
+            {
+                let d = p.distance(q);
+                if best.is_none_or(|b| d < b.0) {
+                    best = Some((d, p, q));
+                }
+            }
+        }
+    }
+    best.map_or(Closest::Far, |(d, p, q)| Closest::Pair(d, p, q))
+}
+
+/// All of an object's component meshes as one triangle soup.
+fn whole_mesh(object: &ObjectModel) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for m in &object.meshes {
+        let base = positions.len() as u32;
+        positions.extend_from_slice(&m.positions);
+        triangles.extend(m.triangles.iter().map(|t| t.map(|k| k + base)));
+    }
+    (positions, triangles)
+}
+
+/// On poses built to put the two objects' closest mesh pair at a gap in
+/// [0, delta2 - e_A - e_B] (B moved along the pair's direction, then measured again), the
+/// normal-cone path, asked about every component pair, seeds that pair: some seed has both
+/// points within `tolerance` (mm) of it. At that gap the exact surfaces are within delta2 of
+/// each other (each mesh lies within its chordal error of its surface), and the closest mesh
+/// pair lies next to the exact solids' closest pair, a critical pair of their distance, which a
+/// lost contact would leave unseeded. (A mesh pair within delta2 alone proves nothing: the
+/// exact surfaces may be up to e_A + e_B farther apart, and the path decides on them; and the
+/// check is on whole objects because a component pair's own closest pair may sit on the
+/// component's boundary without being critical for the solids.)
+fn check_minima(a: &Prepared, b: &Prepared, seed: u64, tolerance: f64) {
+    let mut rng = Rng(seed);
+    let mut scratch = MeshScratch::default();
+    let (mesh_a, mesh_b) = (whole_mesh(&a.object), whole_mesh(&b.object));
+    let (mesh_a, mesh_b) = (
+        (&mesh_a.0[..], &mesh_a.1[..]),
+        (&mesh_b.0[..], &mesh_b.1[..]),
+    );
+    let band = ContactBand {
+        margin: 1.0,
+        delta1: -0.05,
+        delta2: 1.0,
+    };
+    let error = |o: &ObjectModel| o.meshes.iter().map(|m| m.chordal_error).fold(0.0, f64::max);
+    let sure = band.delta2 - error(&a.object) - error(&b.object);
+    assert!(sure > 0.2, "meshes too coarse for the band");
+    let mut checked = 0;
+    for _ in 0..24 {
+        let mut pose = random_pose(&mut rng, mesh_a.0, mesh_b.0, 3.0);
+        // B backs off along a random direction while the meshes intersect, and comes back
+        // along it while they are far apart, in steps of 1 mm.
+        let away = rng.rotation() * DVec3::X;
+        let mut start = None;
+        for _ in 0..60 {
+            match brute_closest(mesh_a, mesh_b, &pose, 2.0) {
+                Closest::Intersecting => pose.translation += away,
+                Closest::Far => pose.translation -= away * 0.5,
+                Closest::Pair(_, p, q) => {
+                    start = Some((p, q));
+                    break;
+                }
+            }
+        }
+        let Some((p, q)) = start else {
+            continue;
+        };
+        let gap = rng.range(0.0, sure);
+        pose.translation += (q - p).normalize_or_zero() * (gap - p.distance(q));
+        let Closest::Pair(d, p, q) = brute_closest(mesh_a, mesh_b, &pose, sure) else {
+            continue;
+        };
+        let mut seeds = Vec::new();
+        for ca in &a.object.components {
+            for cb in &b.object.components {
+                let (_, out) = query_path(
+                    ConcavePath::NormalCones,
+                    (a, ca.id),
+                    (b, cb.id),
+                    &pose,
+                    &band,
+                    &mut scratch,
+                );
+                seeds.extend(out.seeds);
+            }
+        }
+        let seeded = seeds.iter().any(|s| {
+            s.a.local_point.distance(p) <= tolerance
+                && (pose * s.b.local_point).distance(q) <= tolerance
+        });
+        assert!(
+            seeded,
+            "no seed within {tolerance} of the closest pair {p} / {q} at {d} (pose {pose:?}): \
+             {seeds:?}"
+        );
+        checked += 1;
+    }
+    println!("{checked} poses with the closest pair in the band");
+    assert!(checked >= 6, "too few poses in the band to be a test");
+}
+
+#[test]
+fn the_closest_pair_of_torus_and_cylinder_is_seeded() {
+    let ring = Prepared::new(torus(20.0, 5.0, 0.1));
+    let rod = Prepared::new(cylinder(4.0, 50.0, 0.1));
+    check_minima(&ring, &rod, 21, 2.0);
+}
+
+#[test]
+fn the_closest_pair_of_vase_and_bowl_is_seeded() {
+    let vase = Prepared::new(paper_object("vase", 0.2));
+    let bowl = Prepared::new(paper_object("bowl", 0.2));
+    check_minima(&vase, &bowl, 31, 3.0);
+    check_minima(&bowl, &vase, 32, 3.0);
+}
+
+#[test]
+fn the_closest_pair_of_pencil_and_bowl_is_seeded() {
+    let pencil = Prepared::new(paper_object("pencil", 0.2));
+    let bowl = Prepared::new(paper_object("bowl", 0.2));
+    check_minima(&bowl, &pencil, 41, 3.0);
 }

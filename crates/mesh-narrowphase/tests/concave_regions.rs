@@ -1,5 +1,5 @@
-//! Concave pairs: connected collision regions between a proxy mesh and the other mesh, and the
-//! seeds they give, against closed forms.
+//! Concave pairs: the seeds both triangle paths give (normal-cone patch pairs; connected
+//! collision regions between a proxy mesh and the other mesh), against closed forms.
 
 mod common;
 
@@ -66,10 +66,17 @@ fn sphere_resting_in_spherical_bowl_gives_one_region() {
     assert_eq!((inner.len(), outer.len()), (1, 1));
     let ball_c = ball.object.components[0].id;
     let mut scratch = MeshScratch::default();
-    for gap in [0.05, 0.2] {
+    for (path, gap) in PATHS.into_iter().flat_map(|p| [(p, 0.05), (p, 0.2)]) {
         let pose = pose(DQuat::IDENTITY, DVec3::new(0.0, 0.0, 20.0 + gap));
-        let (verdict, out) = query(&bowl, inner[0], &ball, ball_c, &pose, &band(), &mut scratch);
-        assert_eq!(verdict, MeshVerdict::Seeds, "gap {gap}");
+        let (verdict, out) = query_path(
+            path,
+            (&bowl, inner[0]),
+            (&ball, ball_c),
+            &pose,
+            &band(),
+            &mut scratch,
+        );
+        assert_eq!(verdict, MeshVerdict::Seeds, "{path:?} gap {gap}");
         assert_eq!(out.stats.regions, 1);
         assert_eq!(out.seeds.len(), 1);
         let seed = out.seeds[0];
@@ -93,7 +100,14 @@ fn sphere_resting_in_spherical_bowl_gives_one_region() {
 
         // The outer (convex) component's hull contains the cavity and the ball, but its surface
         // is at least 5 mm away: GJK sees overlapping hulls, the triangle path says separated.
-        let (verdict, out) = query(&bowl, outer[0], &ball, ball_c, &pose, &band(), &mut scratch);
+        let (verdict, out) = query_path(
+            path,
+            (&bowl, outer[0]),
+            (&ball, ball_c),
+            &pose,
+            &band(),
+            &mut scratch,
+        );
         assert_eq!(verdict, MeshVerdict::Separated);
         assert!(out.stats.convex_fallback);
     }
@@ -113,24 +127,27 @@ fn cylinder_lying_across_torus_gives_two_regions() {
     let rotation = DQuat::from_rotation_y(std::f64::consts::FRAC_PI_2);
     let pose = pose(rotation, DVec3::new(-40.0, 0.0, 5.0 + gap + 4.0));
     let mut scratch = MeshScratch::default();
-    let (verdict, out) = query(&ring, cr, &rod, cc, &pose, &band(), &mut scratch);
-    assert_eq!(verdict, MeshVerdict::Seeds);
-    assert_eq!(out.stats.regions, 2);
-    assert_eq!(out.seeds.len(), 2);
-    let inverse = pose.inverse();
-    for x in [20.0, -20.0] {
-        let on_ring = DVec3::new(x, 0.0, 5.0);
-        let on_rod = inverse * DVec3::new(x, 0.0, 5.0 + gap);
-        let seed = out
-            .seeds
-            .iter()
-            .find(|s| s.a.local_point.x * x > 0.0)
-            .unwrap_or_else(|| panic!("no seed near x = {x}: {:?}", out.seeds));
-        // Relative radii of curvature: 5 along the rod (the tube's radius), 4 across it (the
-        // rod's radius; the ring's top is flat that way).
-        check_contact_point(seed.a.local_point, on_ring, DVec3::Z, 5.0, "ring");
-        let normal_b = inverse.rotation * DVec3::Z;
-        check_contact_point(seed.b.local_point, on_rod, normal_b, 5.0, "rod");
-        check_locations(seed, &ring.object, &rod.object);
+    for path in PATHS {
+        let (verdict, out) =
+            query_path(path, (&ring, cr), (&rod, cc), &pose, &band(), &mut scratch);
+        assert_eq!(verdict, MeshVerdict::Seeds);
+        assert_eq!(out.stats.regions, 2);
+        assert_eq!(out.seeds.len(), 2);
+        let inverse = pose.inverse();
+        for x in [20.0, -20.0] {
+            let on_ring = DVec3::new(x, 0.0, 5.0);
+            let on_rod = inverse * DVec3::new(x, 0.0, 5.0 + gap);
+            let seed = out
+                .seeds
+                .iter()
+                .find(|s| s.a.local_point.x * x > 0.0)
+                .unwrap_or_else(|| panic!("no seed near x = {x}: {:?}", out.seeds));
+            // Relative radii of curvature: 5 along the rod (the tube's radius), 4 across it (the
+            // rod's radius; the ring's top is flat that way).
+            check_contact_point(seed.a.local_point, on_ring, DVec3::Z, 5.0, "ring");
+            let normal_b = inverse.rotation * DVec3::Z;
+            check_contact_point(seed.b.local_point, on_rod, normal_b, 5.0, "rod");
+            check_locations(seed, &ring.object, &rod.object);
+        }
     }
 }

@@ -5,7 +5,7 @@ mod common;
 
 use common::*;
 use geom_param::{ComponentKind, DQuat, DVec2, DVec3};
-use mesh_narrowphase::{ContactBand, MeshScratch, MeshVerdict};
+use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch, MeshVerdict};
 
 const TOL: f64 = 0.02;
 
@@ -147,42 +147,44 @@ fn ball_in_the_concave_neck_gives_one_region() {
         "the ball touches elsewhere first"
     );
     let pose = pose(DQuat::IDENTITY, DVec3::new(centre.x, 0.0, centre.y));
-    let mut scratch = MeshScratch::default();
-    let (verdict, out) = query(
-        &vase,
-        neck[0],
-        &ball,
-        ball.object.components[0].id,
-        &pose,
-        &band(),
-        &mut scratch,
-    );
-    assert_eq!(verdict, MeshVerdict::Seeds);
-    assert_eq!(out.stats.regions, 1);
-    assert!(out.stats.proxy_built);
-    let seed = out.seeds[0];
-    let normal = DVec3::new(n.x, 0.0, n.y);
-    // Relative radius: the ball's 3 mm against the neck (concave, so larger): at most 3 mm.
-    check_contact_point(
-        seed.a.local_point,
-        DVec3::new(q.x, 0.0, q.y),
-        normal,
-        3.0,
-        "neck",
-    );
-    check_contact_point(seed.b.local_point, -normal * r, normal, 3.0, "ball");
-    // The same pair the other way round gives the same seed, mirrored.
-    let (verdict, swapped) = query(
-        &ball,
-        ball.object.components[0].id,
-        &vase,
-        neck[0],
-        &pose.inverse(),
-        &band(),
-        &mut scratch,
-    );
-    assert_eq!(verdict, MeshVerdict::Seeds);
-    assert_eq!(swapped.seeds.len(), 1);
-    assert!(swapped.seeds[0].a.local_point.distance(seed.b.local_point) <= TOL);
-    assert!(swapped.seeds[0].b.local_point.distance(seed.a.local_point) <= TOL);
+    let ball_c = ball.object.components[0].id;
+    for path in PATHS {
+        let mut scratch = MeshScratch::default();
+        let (verdict, out) = query_path(
+            path,
+            (&vase, neck[0]),
+            (&ball, ball_c),
+            &pose,
+            &band(),
+            &mut scratch,
+        );
+        assert_eq!(verdict, MeshVerdict::Seeds);
+        assert_eq!(out.stats.regions, 1);
+        // Only the proxy path builds proxies.
+        assert_eq!(out.stats.proxy_built, path == ConcavePath::ProxyRegions);
+        let seed = out.seeds[0];
+        let normal = DVec3::new(n.x, 0.0, n.y);
+        // Relative radius: the ball's 3 mm against the neck (concave, so larger): at most 3 mm.
+        check_contact_point(
+            seed.a.local_point,
+            DVec3::new(q.x, 0.0, q.y),
+            normal,
+            3.0,
+            "neck",
+        );
+        check_contact_point(seed.b.local_point, -normal * r, normal, 3.0, "ball");
+        // The same pair the other way round gives the same seed, mirrored.
+        let (verdict, swapped) = query_path(
+            path,
+            (&ball, ball_c),
+            (&vase, neck[0]),
+            &pose.inverse(),
+            &band(),
+            &mut scratch,
+        );
+        assert_eq!(verdict, MeshVerdict::Seeds);
+        assert_eq!(swapped.seeds.len(), 1);
+        assert!(swapped.seeds[0].a.local_point.distance(seed.b.local_point) <= TOL);
+        assert!(swapped.seeds[0].b.local_point.distance(seed.a.local_point) <= TOL);
+    }
 }

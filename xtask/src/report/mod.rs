@@ -12,10 +12,11 @@ pub mod methods;
 pub mod paper_tables;
 pub mod pictures;
 pub mod plot;
+pub mod stage2_comparison;
 pub mod stage_growth;
 pub mod stage_times;
 pub mod timing;
-mod writer;
+pub mod writer;
 
 use accuracy_scene::{
     AccuracyScene, PAPER_SCENES, closed_form_scene, closed_form_scenes, paper_scene,
@@ -149,6 +150,9 @@ pub fn write_report(root: &Path, out_dir: &Path, settings: &ReportSettings) -> R
     let growth_components =
         stage_growth::with_components(&settings.growth_components, settings.tables.repetitions)?;
 
+    eprintln!("report: stage 2 paths");
+    let stage2 = stage2_comparison::measure(root, settings.tables.repetitions * 10)?;
+
     eprintln!("report: pictures");
     let pictures = settings
         .paper_scenes
@@ -169,6 +173,7 @@ pub fn write_report(root: &Path, out_dir: &Path, settings: &ReportSettings) -> R
         table3: &table3,
         growth_resolution: &growth_resolution,
         growth_components: &growth_components,
+        stage2: &stage2,
         pictures: &pictures,
     });
     write(&out_dir.join("REPORT.md"), text.as_bytes())

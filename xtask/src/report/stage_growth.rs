@@ -1,9 +1,12 @@
 //! How each stage's cost grows with the mesh resolution and with the number of components.
 
 use super::stage_times::StageTimes;
+use bvh_hybrid::HybridBvh;
 use contact_pipeline::{ContactOptions, ContactPipeline};
 use contacts::scene::Scene;
+use exact_refine::NewtonRefiner;
 use geom_param::{DPose3, DQuat, DVec3, ObjectDescription, SegmentSpec};
+use mesh_narrowphase::{ConcavePath, MeshNarrowphase, MeshNarrowphaseOptions};
 use std::path::Path;
 
 /// One measured configuration.
@@ -14,8 +17,11 @@ pub struct GrowthRow {
     pub triangles: usize,
     /// Components of both objects together.
     pub components: usize,
-    /// Stage medians.
+    /// Stage medians (Stage 2 on the default path, the normal-cone patch hierarchy).
     pub times: StageTimes,
+    /// Stage 2 median (µs) of the same queries with Stage 2 on the proxy-mesh path
+    /// (`ConcavePath::ProxyRegions`), measured in the same run.
+    pub mesh_proxy_us: f64,
 }
 
 /// A paper scene (two-contact pose) at each chordal tolerance.
@@ -105,6 +111,18 @@ fn measure_pair(
     repetitions: usize,
 ) -> Result<GrowthRow, String> {
     let pipeline = ContactPipeline::new(options).map_err(|e| e.to_string())?;
+    let proxy = ContactPipeline::with_stages(
+        HybridBvh::default(),
+        MeshNarrowphase {
+            options: MeshNarrowphaseOptions {
+                concave_path: ConcavePath::ProxyRegions,
+                ..MeshNarrowphaseOptions::default()
+            },
+        },
+        NewtonRefiner::default(),
+        options,
+    )
+    .map_err(|e| e.to_string())?;
     let a = pipeline
         .prepare_description(da)
         .map_err(|e| format!("{}: {e}", da.name))?;
@@ -118,11 +136,13 @@ fn measure_pair(
         .sum();
     let components = a.model.meshes.len() + b.model.meshes.len();
     let times = StageTimes::measure(&pipeline, &a, pose_a, &b, pose_b, repetitions)?;
+    let old = StageTimes::measure(&proxy, &a, pose_a, &b, pose_b, repetitions)?;
     Ok(GrowthRow {
         parameter,
         triangles,
         components,
         times,
+        mesh_proxy_us: old.mesh_us,
     })
 }
 

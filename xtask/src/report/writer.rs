@@ -11,18 +11,30 @@ use super::paper_tables::{
 };
 use super::plot::FLOOR;
 use super::stage_growth::GrowthRow;
+use super::stage2_comparison::ComparisonRow;
 use std::fmt::Write as _;
 
 /// Everything one run measured.
 pub struct ReportData<'a> {
+    /// The machine it ran on.
     pub machine: MachineInfo,
+    /// What was measured.
     pub settings: &'a ReportSettings,
+    /// Error against time per scene, with its figure's file name.
     pub accuracy: &'a [(&'a AccuracyScene, Vec<Measurement>, String)],
+    /// The paper's Table 1 beside ours.
     pub table1: &'a [Table1Row],
+    /// Fig. 2 and Table 2.
     pub random: &'a RandomQueryTables,
+    /// Table 3.
     pub table3: &'a [SceneTimes],
+    /// Growth with mesh resolution, per paper scene.
     pub growth_resolution: &'a [(&'static str, Vec<GrowthRow>)],
+    /// Growth with the number of components.
     pub growth_components: &'a [GrowthRow],
+    /// Stage 2's two paths side by side.
+    pub stage2: &'a [ComparisonRow],
+    /// Pictures per paper scene.
     pub pictures: &'a [(&'static str, String)],
 }
 
@@ -387,22 +399,35 @@ fn stage_section(s: &mut String, data: &ReportData<'_>) {
     }
     let _ = writeln!(
         s,
-        "\n### Growth with mesh resolution\n\nThe same poses with the component meshes built at each chordal tolerance (triangles of both objects together).\n"
+        "\n### Growth with mesh resolution\n\nThe same poses with the component meshes built at each chordal tolerance (triangles of both objects together). The stage columns are the default pipeline (Stage 2 on the normal-cone patch hierarchy); the last two columns are Stage 2 alone on the proxy-mesh path (the path before issue 15) for the same queries, and each path's Stage 2 time against its own at the coarsest tolerance.\n"
     );
     for (name, rows) in data.growth_resolution {
         let _ = writeln!(s, "**{name}**\n");
         let _ = writeln!(
             s,
-            "| chordal (mm) | triangles | broad µs | mesh µs | refine µs | whole µs |"
+            "| chordal (mm) | triangles | broad µs | mesh µs | refine µs | whole µs | mesh µs, proxy path | mesh growth: cones / proxy |"
         );
-        let _ = writeln!(s, "|---|---|---|---|---|---|");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+        let first = rows.first().map(|r| (r.times.mesh_us, r.mesh_proxy_us));
         for row in rows {
+            let growth = first.map_or_else(String::new, |(cones, proxy)| {
+                format!(
+                    "{} / {}",
+                    times(row.times.mesh_us / cones),
+                    times(row.mesh_proxy_us / proxy)
+                )
+            });
             stage_row(
                 s,
                 &format!("{}", row.parameter),
                 &row.times,
                 &format!(" {} |", row.triangles),
             );
+            // Append the proxy columns to the row just written.
+            if s.ends_with('\n') {
+                s.pop();
+            }
+            let _ = writeln!(s, " {:.2} | {growth} |", row.mesh_proxy_us);
         }
         let _ = writeln!(s);
     }
@@ -421,6 +446,38 @@ fn stage_section(s: &mut String, data: &ReportData<'_>) {
             &format!("{}", row.parameter),
             &row.times,
             &format!(" {} |", row.components),
+        );
+    }
+    let _ = writeln!(s);
+    stage2_section(s, data.stage2);
+}
+
+/// Stage 2's two paths side by side (see `stage2_comparison`): the report's section, also
+/// printed alone by `cargo xtask stage2`.
+pub fn stage2_section(s: &mut String, rows: &[ComparisonRow]) {
+    let _ = writeln!(
+        s,
+        "### Stage 2: proxy regions against normal cones\n\nEvery fixture scene and the report's concave scenes, queried in one run with Stage 2 on the proxy-mesh path (`ConcavePath::ProxyRegions`, before issue 15) and on the normal-cone patch hierarchy (`ConcavePath::NormalCones`, the default), the three timings interleaved query by query. *Warm*: the same scratch across queries (GJK warm starts, and for the normal cones the traversal front of the previous query, carried under its motion certificate: here the pose does not move); *cold*: a fresh scratch for every query (a pose never seen). Medians in µs; ratios are proxy / normal cones.\n"
+    );
+    let _ = writeln!(
+        s,
+        "| scene | answer (proxy / cones) | same contacts | whole query: proxy | cones warm | cones cold | ratio warm | Stage 2: proxy | cones warm | cones cold | ratio warm | ratio cold |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let state = |(state, n): (contact_pipeline::PairState, usize)| format!("{state:?} {n}");
+    for r in rows {
+        let [wp, ww, wc] = r.whole_us;
+        let [mp, mw, mc] = r.mesh_us;
+        let _ = writeln!(
+            s,
+            "| {} | {} / {} | {} | {wp:.1} | {ww:.1} | {wc:.1} | {} | {mp:.2} | {mw:.2} | {mc:.2} | {} | {} |",
+            r.scene,
+            state(r.proxy_answer),
+            state(r.cones_answer),
+            if r.same_contacts { "yes" } else { "no" },
+            times(wp / ww),
+            times(mp / mw),
+            times(mp / mc),
         );
     }
     let _ = writeln!(s);

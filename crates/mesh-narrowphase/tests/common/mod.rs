@@ -6,9 +6,22 @@ use geom_param::{
     Profile, SegmentSpec,
 };
 use mesh_narrowphase::{
-    ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshScratch, MeshVerdict,
-    PreparedObject,
+    ComponentRef, ConcavePath, ContactBand, MeshNarrowphase, MeshNarrowphaseOptions, MeshOutput,
+    MeshPhase, MeshScratch, MeshVerdict, PreparedObject,
 };
+
+/// Both triangle paths, for suites that hold for either.
+pub const PATHS: [ConcavePath; 2] = [ConcavePath::NormalCones, ConcavePath::ProxyRegions];
+
+/// The mesh phase answering concave pairs with `path`.
+pub fn phase(path: ConcavePath) -> MeshNarrowphase {
+    MeshNarrowphase {
+        options: MeshNarrowphaseOptions {
+            concave_path: path,
+            ..MeshNarrowphaseOptions::default()
+        },
+    }
+}
 
 /// Deterministic xorshift generator.
 pub struct Rng(pub u64);
@@ -189,8 +202,27 @@ pub fn query(
     band: &ContactBand,
     scratch: &mut MeshScratch,
 ) -> (MeshVerdict, MeshOutput) {
+    query_path(
+        ConcavePath::default(),
+        (a, ca),
+        (b, cb),
+        pose_ab,
+        band,
+        scratch,
+    )
+}
+
+/// As [`query`], with the triangle path `path`.
+pub fn query_path(
+    path: ConcavePath,
+    (a, ca): (&Prepared, ComponentId),
+    (b, cb): (&Prepared, ComponentId),
+    pose_ab: &DPose3,
+    band: &ContactBand,
+    scratch: &mut MeshScratch,
+) -> (MeshVerdict, MeshOutput) {
     let mut out = MeshOutput::default();
-    let verdict = MeshNarrowphase::default().query(
+    let verdict = phase(path).query(
         a.component(ca),
         b.component(cb),
         pose_ab,

@@ -1,0 +1,133 @@
+//! Temporal coherence for the normal-cone path: the last traversal's front of one component
+//! pair (the node pairs where it stopped, as FCL's front lists), carried to the next query of
+//! the pair under a motion certificate.
+//!
+//! A node pair dropped because its volumes were `s` farther apart than the reach stays dropped
+//! while B moves by less than `s`: the distance between two sets shrinks by at most the motion
+//! of either. So a query only re-tests the front's other pairs (dropped by cones, certified,
+//! leaves) and those whose margin the motion since the front's reference pose has used up, and
+//! descends from them as a fresh traversal would. Whatever the pose, the answer is the one the
+//! traversal from the root gives, up to which of equally valid stopping pairs it reaches.
+
+use crate::cone_traversal::{FrontEntry, TraversalOutput};
+use crate::patch_tree::PatchTree;
+use geom_param::DPose3;
+
+/// The front of one component pair (see the module documentation).
+#[derive(Clone, Debug, Default)]
+pub struct ConeFront {
+    /// The pose the entries' margins are measured from; `None` before the first query.
+    reference: Option<DPose3>,
+    /// The reach the front was built with (bits).
+    reach: u64,
+    /// The trees it indexes: addresses and node counts.
+    trees: [usize; 4],
+    /// Stop pairs.
+    entries: Vec<FrontEntry>,
+    /// How many entries the last traversal from the root left.
+    fresh: usize,
+}
+
+/// Largest use of the motion certificates before the front is rebuilt from the root: when the
+/// motion has used up the margins of more than this fraction of the entries dropped by
+/// distance, a traversal from the root is cheaper.
+const RETEST_FRACTION: f64 = 0.5;
+
+/// Largest growth of the front (its entries against those of the last traversal from the
+/// root) before it is rebuilt: carried fronts only deepen.
+const MAX_GROWTH: usize = 4;
+
+impl ConeFront {
+    /// Forgets the front (the next query traverses from the root).
+    pub fn clear(&mut self) {
+        self.reference = None;
+        self.entries.clear();
+    }
+
+    /// Prepares `out` (cleared by the caller) for this query of the pair: queues the front's
+    /// pairs that must be tested again, keeps the others and returns the motion bound `moved`
+    /// (mm) of B since the reference pose, to pass to [`crate::cone_traversal::traverse`]; or,
+    /// when there is no usable front, queues the root pair and returns 0.
+    ///
+    /// The motion of a point x of B's component between poses (R0, t0) and (R1, t1) is
+    /// |(R1 - R0) x + t1 - t0| <= 2 sin(ω/2) |x| + |t1 - t0|, ω the angle of R1 R0⁻¹, with |x|
+    /// at most B's root ball's reach from B's origin.
+    pub fn start(
+        &mut self,
+        (tree_a, tree_b): (&PatchTree, &PatchTree),
+        pose_ab: &DPose3,
+        reach: f64,
+        out: &mut TraversalOutput,
+    ) -> f64 {
+        let trees = [
+            std::ptr::from_ref(tree_a) as usize,
+            tree_a.nodes.len(),
+            std::ptr::from_ref(tree_b) as usize,
+            tree_b.nodes.len(),
+        ];
+        let same = self.trees == trees && self.reach == reach.to_bits();
+        let moved = match (same, self.reference) {
+            (true, Some(reference)) => motion(&reference, pose_ab, tree_b),
+            _ => f64::INFINITY,
+        };
+        // Entries the motion has used up (those tested every query, with negative margins, do
+        // not count: a traversal from the root would stop at them again).
+        let (mut used_up, mut carried) = (0_usize, 0_usize);
+        for e in &self.entries {
+            if e.slack > moved {
+                carried += 1;
+            } else if e.slack >= 0.0 {
+                used_up += 1;
+            }
+        }
+        let usable = moved.is_finite()
+            && (used_up as f64) <= RETEST_FRACTION * (used_up + carried) as f64
+            && self.entries.len() <= MAX_GROWTH * self.fresh.max(1);
+        if !usable {
+            self.reference = Some(*pose_ab);
+            self.reach = reach.to_bits();
+            self.trees = trees;
+            self.entries.clear();
+            self.fresh = 0;
+            out.queue(0, 0);
+            return 0.0;
+        }
+        // (A NaN margin is tested again.)
+        for e in self
+            .entries
+            .iter()
+            .filter(|e| e.slack <= moved || e.slack.is_nan())
+        {
+            out.queue(e.a, e.b);
+        }
+        self.entries.retain(|e| e.slack > moved);
+        moved
+    }
+
+    /// Takes the stop pairs of this query's traversal into the front.
+    pub fn finish(&mut self, out: &TraversalOutput) {
+        let fresh = self.entries.is_empty();
+        self.entries.extend_from_slice(&out.front);
+        if fresh {
+            self.fresh = self.entries.len();
+        }
+    }
+}
+
+/// The bound (mm) on the motion of any point of B's component (tree `tree_b`) between B's poses
+/// `from` and `to` in A's frame; infinite when a pose is not finite.
+fn motion(from: &DPose3, to: &DPose3, tree_b: &PatchTree) -> f64 {
+    let Some(root) = tree_b.nodes.first() else {
+        return 0.0;
+    };
+    let reach = root.centre.length() + root.radius;
+    let turn = to.rotation * from.rotation.inverse();
+    // sin(ω/2) = |vector part| of the unit quaternion of the turn.
+    let half_sine = turn.xyz().length().min(1.0);
+    let moved = 2.0 * half_sine * reach + (to.translation - from.translation).length();
+    if moved.is_finite() {
+        moved
+    } else {
+        f64::INFINITY
+    }
+}

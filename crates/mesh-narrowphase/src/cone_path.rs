@@ -1,0 +1,598 @@
+//! The normal-cone triangle path ([`crate::ConcavePath::NormalCones`]): one traversal of the two
+//! components' patch trees (and of each apex against the other tree), then one seed per
+//! minimum: certified pairs seeded from second-order models of the exact faces, the leaf pairs
+//! left from their closest points, and exact triangle tests where the meshes may intersect.
+
+use crate::cone_front::ConeFront;
+use crate::cone_traversal::{PairFrame, TraversalOutput, traverse, traverse_point};
+use crate::default_phase::{MeshScratch, PairKey};
+use crate::mesh_intersections::{intersect_candidates, report_mesh_intersections};
+use crate::mesh_phase::{MeshOutput, MeshVerdict};
+use crate::normal_cone::{CriticalKinds, NormalCone};
+use crate::patch_tree::{PatchLeaf, PatchNode, PatchTree, Piece};
+use crate::query_side::Side;
+use crate::triangle_distance::{TrianglePoint, closest_between_triangles, closest_on_triangle};
+use geom_param::{DPose3, FeatureLocation, Seed, SeedPoint};
+use glam::{DMat2, DVec2, DVec3};
+use std::collections::HashMap;
+
+/// Buffers of the normal-cone path, kept across queries.
+#[derive(Clone, Debug, Default)]
+pub struct ConeScratch {
+    traversal: TraversalOutput,
+    found: Vec<Found>,
+    kept: Vec<usize>,
+    made: Vec<(f64, Seed)>,
+    /// The last traversal's front per component pair.
+    pub(crate) fronts: HashMap<PairKey, ConeFront>,
+}
+
+/// Where a seed candidate comes from.
+#[derive(Clone, Copy, Debug)]
+enum Source {
+    /// A certified pair; its seed is made once kept ([`node_seed`]).
+    Certified,
+    /// A leaf pair or an apex: the seed is already made.
+    Made(Seed),
+}
+
+/// A seed candidate before duplicates are merged.
+#[derive(Clone, Copy, Debug)]
+struct Found {
+    /// Order of preference (smaller first): certified pairs by their models' gap, then leaf
+    /// pairs by mesh distance, then certified pairs whose models' minimum lies outside them.
+    rank: (u8, f64),
+    /// A's point (A's frame).
+    point_a: DVec3,
+    /// B's point (A's frame).
+    point_b: DVec3,
+    /// Two candidates whose points are both within the smaller of their radii (mm) stand for
+    /// the same minimum.
+    radius: f64,
+    /// For a certified pair whose models' minimum lies outside its balls: the smaller ball
+    /// radius (mm). Such a pair's own minimum, if it has one, lies in it; when an earlier
+    /// candidate's points lie within this radius of the candidate's, they are taken for the
+    /// same minimum (the models of a pair holding a minimum predict it within its ball up to
+    /// their third-order error, which the factor of four between this radius and
+    /// [`MODEL_MERGE`]'s covers).
+    outside: Option<f64>,
+    source: Source,
+}
+
+/// Fraction of a certified pair's smaller ball radius within which two model seeds are the same
+/// minimum. A certified pair holds at most one minimum and the models of neighbouring pairs
+/// predict it to second order, far closer than this; two distinct minima closer than this
+/// would make the gap non-convex within one ball, which no certified pair allows.
+const MODEL_MERGE: f64 = 0.25;
+
+/// The normal-cone triangle path: see [`crate::ConcavePath::NormalCones`] and the contract on
+/// [`crate::MeshPhase`].
+pub(crate) fn cone_path(
+    (side_a, side_b): (&Side<'_>, &Side<'_>),
+    key: PairKey,
+    pose_ab: &DPose3,
+    delta2: f64,
+    errors: f64,
+    scratch: &mut MeshScratch,
+    out: &mut MeshOutput,
+) -> MeshVerdict {
+    let (tree_a, built_a) = side_a.patches();
+    let (tree_b, built_b) = side_b.patches();
+    out.stats.patches_built = built_a || built_b;
+    // Rounding of coordinates of magnitude `size`, far below any tolerance (see
+    // `proxy_path::proxy_offset` for the same allowance).
+    let allowance = 1e-9 * (side_a.size + side_b.size);
+    let reach = delta2.max(0.0) + allowance;
+    let frame = PairFrame::new(pose_ab);
+    let traversal = &mut scratch.cone.traversal;
+    traversal.clear();
+    let front = scratch.cone.fronts.entry(key).or_default();
+    let moved = front.start((tree_a, tree_b), pose_ab, reach, traversal);
+    traverse(tree_a, tree_b, &frame, (reach, moved), traversal);
+    front.finish(traversal);
+    let inverse = pose_ab.inverse();
+    for (k, apex) in tree_a.apexes.iter().enumerate() {
+        let cone = apex.cone.rotated(inverse.rotation);
+        let point = inverse * apex.point;
+        traverse_point(tree_b, (k as u32, point, &cone), true, reach, traversal);
+    }
+    for (k, apex) in tree_b.apexes.iter().enumerate() {
+        let cone = apex.cone.rotated(pose_ab.rotation);
+        let point = *pose_ab * apex.point;
+        traverse_point(tree_a, (k as u32, point, &cone), false, reach, traversal);
+    }
+    out.stats.node_pairs_visited = traversal.visited;
+    out.stats.certified_pairs = u32::try_from(traversal.certified.len()).unwrap_or(u32::MAX);
+
+    // 1. Triangles whose volumes overlap: exact intersection tests (penetrating meshes).
+    scratch.candidates.clear();
+    scratch.candidates.extend(
+        scratch
+            .cone
+            .traversal
+            .leaves
+            .iter()
+            .filter(|l| l.lower <= 0.0)
+            .filter_map(|l| triangle_pair(tree_a, tree_b, l.a, l.b)),
+    );
+    scratch.candidates.sort_unstable();
+    scratch.candidates.dedup();
+    let (ma, mb) = (side_a.mesh, side_b.mesh);
+    intersect_candidates(
+        (&ma.positions, &ma.triangles),
+        (&mb.positions, &mb.triangles),
+        pose_ab,
+        &scratch.candidates,
+        &mut scratch.segments,
+        &mut out.stats,
+    );
+    report_mesh_intersections(
+        side_a,
+        side_b,
+        pose_ab,
+        &scratch.segments,
+        &mut scratch.regions,
+        &mut scratch.region_of,
+        out,
+    );
+    let meshes_intersect = !out.penetrating_pairs.is_empty();
+
+    // 2. Seed candidates.
+    let ConeScratch {
+        traversal,
+        found,
+        kept,
+        made,
+        ..
+    } = &mut scratch.cone;
+    found.clear();
+    for stop in &traversal.certified {
+        let (na, nb) = (
+            &tree_a.nodes[stop.a as usize],
+            &tree_b.nodes[stop.b as usize],
+        );
+        if let Some(f) = predict(na, nb, &frame) {
+            found.push(f);
+        }
+    }
+    let mesh_reach = delta2.max(0.0) + errors + allowance;
+    // A leaf pair whose two balls already hold a candidate's points would be merged with it
+    // below (its radius is at least its balls'), so it is skipped before its closest points are
+    // computed.
+    let first_leaf = found.len();
+    for leaf in traversal.leaves.iter().filter(|l| l.critical) {
+        if let Some(pair) = triangle_pair(tree_a, tree_b, leaf.a, leaf.b) {
+            if leaf.lower <= 0.0 && out.penetrating_pairs.contains(&pair) {
+                continue;
+            }
+        }
+        let (na, nb) = (
+            &tree_a.nodes[leaf.a as usize],
+            &tree_b.nodes[leaf.b as usize],
+        );
+        let cb = frame.rotation * nb.centre + frame.translation;
+        let covered = found[first_leaf..].iter().any(|f| {
+            f.point_a.distance(na.centre) <= na.radius && f.point_b.distance(cb) <= nb.radius
+        });
+        if covered {
+            continue;
+        }
+        if let Some(f) = leaf_seed((side_a, tree_a, leaf.a), (side_b, tree_b, leaf.b), pose_ab)
+            .filter(|f| f.rank.1 <= mesh_reach)
+        {
+            found.push(f);
+        }
+    }
+    let mut keep = |f: Option<Found>| {
+        if let Some(f) = f.filter(|f| f.rank.1 <= mesh_reach) {
+            found.push(f);
+        }
+    };
+    for &(k, node) in &traversal.apex_a_leaves {
+        keep(apex_seed(
+            (side_a, tree_a, k),
+            (side_b, tree_b, node),
+            pose_ab,
+            true,
+        ));
+    }
+    for &(k, node) in &traversal.apex_b_leaves {
+        keep(apex_seed(
+            (side_b, tree_b, k),
+            (side_a, tree_a, node),
+            pose_ab,
+            false,
+        ));
+    }
+    for (ka, apex_a) in tree_a.apexes.iter().enumerate() {
+        for (kb, apex_b) in tree_b.apexes.iter().enumerate() {
+            keep(apex_pair(
+                (side_a, ka, apex_a),
+                (side_b, kb, apex_b),
+                pose_ab,
+                reach,
+            ));
+        }
+    }
+
+    // 3. One seed per minimum, closest first.
+    found.sort_unstable_by(|x, y| x.rank.0.cmp(&y.rank.0).then(x.rank.1.total_cmp(&y.rank.1)));
+    kept.clear();
+    made.clear();
+    for (i, f) in found.iter().enumerate() {
+        let duplicate = kept.iter().any(|&k| {
+            let k = &found[k];
+            let r = k.radius.min(f.radius);
+            let near = k.point_a.distance(f.point_a) <= r && k.point_b.distance(f.point_b) <= r;
+            let inside = f.outside.is_some_and(|r| {
+                k.point_a.distance(f.point_a) <= r && k.point_b.distance(f.point_b) <= r
+            });
+            near || inside
+        });
+        if duplicate {
+            continue;
+        }
+        let seed = match f.source {
+            Source::Made(seed) => Some(seed),
+            Source::Certified => node_seed(side_a, tree_a, f.point_a, f.radius)
+                .zip(node_seed(side_b, tree_b, inverse * f.point_b, f.radius))
+                .map(|(a, b)| Seed { a, b }),
+        };
+        if let Some(seed) = seed {
+            kept.push(i);
+            made.push((f.rank.1, seed));
+        }
+    }
+    made.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+    out.seeds.extend(made.iter().map(|m| m.1));
+    out.stats.regions += u32::try_from(made.len()).unwrap_or(u32::MAX);
+    if meshes_intersect {
+        MeshVerdict::Penetrating
+    } else if out.seeds.is_empty() {
+        MeshVerdict::Separated
+    } else {
+        MeshVerdict::Seeds
+    }
+}
+
+/// The mesh triangles of a leaf pair.
+fn triangle_pair(tree_a: &PatchTree, tree_b: &PatchTree, a: u32, b: u32) -> Option<(u32, u32)> {
+    match (tree_a.nodes[a as usize].leaf, tree_b.nodes[b as usize].leaf) {
+        (PatchLeaf::Piece(pa), PatchLeaf::Piece(pb)) => Some((
+            tree_a.pieces.get(pa as usize)?.triangle,
+            tree_b.pieces.get(pb as usize)?.triangle,
+        )),
+        _ => None,
+    }
+}
+
+/// One side of a certified pair as a height function over the plane normal to w (lateral
+/// coordinates x in the basis e1, e2): h(x) ≈ h0 + g · (x - x0) + ½ (x - x0)ᵀ H (x - x0).
+struct Height {
+    x0: DVec2,
+    h0: f64,
+    g: DVec2,
+    hessian: DMat2,
+    radius: f64,
+}
+
+impl Height {
+    /// From a point with its outward normal and the patch's curvature tensor evaluated on the
+    /// lateral basis (`form(e_i, e_j)`); `None` when the normal is nearly parallel to the plane.
+    /// The graph's gradient is -n_lateral / (n · w) for either orientation, and a patch bends
+    /// away from its outward normal where convex: H = -sign(n · w) C restricted.
+    fn new(
+        point: DVec3,
+        normal: DVec3,
+        form: impl Fn(usize, usize) -> f64,
+        (w, e1, e2): (DVec3, DVec3, DVec3),
+        radius: f64,
+    ) -> Option<Self> {
+        let nw = normal.dot(w);
+        if nw.abs() <= 0.2 || nw.is_nan() {
+            return None;
+        }
+        let sign = -nw.signum();
+        Some(Self {
+            x0: DVec2::new(e1.dot(point), e2.dot(point)),
+            h0: w.dot(point),
+            g: -DVec2::new(e1.dot(normal), e2.dot(normal)) / nw,
+            hessian: DMat2::from_cols(
+                DVec2::new(form(0, 0), form(0, 1)),
+                DVec2::new(form(0, 1), form(1, 1)),
+            ) * sign,
+            radius,
+        })
+    }
+
+    fn at(&self, x: DVec2) -> f64 {
+        let d = x - self.x0;
+        self.h0 + self.g.dot(d) + 0.5 * d.dot(self.hessian * d)
+    }
+}
+
+/// A certified pair's candidate from the nodes' own second-order models (anchor point and
+/// normal on the exact surface, mean curvature tensor): where the gap between the two height
+/// functions over the plane normal to w (the bisector of A's axis and the reverse of B's) is
+/// least, solved from their 2x2 Hessians (which the certificate makes positive definite; where
+/// the models disagree, the midpoint of the two anchors). No surface is evaluated, so that
+/// duplicates are merged before seeds are made ([`node_seed`]).
+fn predict(na: &PatchNode, nb: &PatchNode, frame: &PairFrame) -> Option<Found> {
+    let axis_b = frame.rotation * nb.cone.axis;
+    let w = (na.cone.axis - axis_b).try_normalize()?;
+    let (e1, e2) = w.any_orthonormal_pair();
+    let basis = [e1, e2];
+    let local = [frame.inverse * e1, frame.inverse * e2];
+    let ha = Height::new(
+        na.anchor,
+        na.anchor_normal,
+        |i, j| na.curvature.form(basis[i], basis[j]),
+        (w, e1, e2),
+        na.radius,
+    )?;
+    let hb = Height::new(
+        frame.rotation * nb.anchor + frame.translation,
+        frame.rotation * nb.anchor_normal,
+        |i, j| nb.curvature.form(local[i], local[j]),
+        (w, e1, e2),
+        nb.radius,
+    )?;
+    let x = lowest_gap(&ha, &hb);
+    let clamped = x.distance(ha.x0) > ha.radius || x.distance(hb.x0) > hb.radius;
+    let lift = |h: &Height| e1 * x.x + e2 * x.y + w * h.at(x);
+    Some(Found {
+        rank: (if clamped { 2 } else { 0 }, hb.at(x) - ha.at(x)),
+        point_a: lift(&ha),
+        point_b: lift(&hb),
+        radius: MODEL_MERGE * na.radius.min(nb.radius),
+        outside: clamped.then_some(na.radius.min(nb.radius)),
+        source: Source::Certified,
+    })
+}
+
+/// The lateral point where h_B - h_A is least: (H_B - H_A) x = g_A - g_B + H_B x0_B - H_A x0_A
+/// when that Hessian is positive definite, else the midpoint of the two centres.
+fn lowest_gap(ha: &Height, hb: &Height) -> DVec2 {
+    let k = hb.hessian - ha.hessian;
+    let rhs = ha.g - hb.g + hb.hessian * hb.x0 - ha.hessian * ha.x0;
+    let det = k.determinant();
+    let scale = k
+        .x_axis
+        .abs()
+        .max_element()
+        .max(k.y_axis.abs().max_element());
+    let midpoint = 0.5 * (ha.x0 + hb.x0);
+    if det > 1e-12 * scale * scale && k.x_axis.x + k.y_axis.y > 0.0 {
+        let x = k.inverse() * rhs;
+        if x.is_finite() { x } else { midpoint }
+    } else {
+        midpoint
+    }
+}
+
+/// The seed point of a kept certified pair's side: the predicted point (`point`, in its own
+/// object's frame) moved to the nearest point of the component's mesh, and located on the
+/// exact surface through its triangle's corner parameters. On the mesh, like every other seed,
+/// and unaffected by singular parametrisations (a sphere's pole), which an expansion in the
+/// face's parameters is not. (The whole tree is searched, not the pair's node: the prediction
+/// may fall just beyond the node.)
+///
+/// Where that point lies within `snap` (mm; the candidate's merge radius, within which the
+/// models place the minimum) or the chordal error of a mesh vertex on a vertex of the solid (a
+/// pole or an apex), the seed is that vertex: a seed a hair beside a pole makes Newton crawl
+/// through the pole's singular parametrisation, one on it starts from the vertex itself, and
+/// Stage 3 moves off it onto a face when the minimum lies beside it.
+fn node_seed(side: &Side<'_>, tree: &PatchTree, point: DVec3, snap: f64) -> Option<SeedPoint> {
+    let (piece, on_piece) = nearest_piece(tree, 0, point)?;
+    let snap = snap.max(side.chordal_error()) + 1e-12 * side.size;
+    let corner = (0..3).find(|&k| {
+        let b = piece.barycentric[k];
+        let tri = side.mesh.triangles.get(piece.triangle as usize);
+        let vertex = tri.and_then(|t| {
+            let m = (0..3).find(|&m| b[m] == 1.0)?;
+            Some(t[m])
+        });
+        let on_vertex = vertex.and_then(|v| side.mesh.vertex_locations.get(v as usize));
+        matches!(on_vertex, Some(FeatureLocation::Vertex { .. }))
+            && piece.corners[k].distance(on_piece.point) <= snap
+    });
+    let barycentric = match corner {
+        Some(k) => {
+            let mut unit = [0.0; 3];
+            unit[k] = 1.0;
+            unit
+        }
+        None => on_piece.barycentric,
+    };
+    piece_point(side, piece, barycentric)
+}
+
+/// The point of the pieces under `node` nearest to `point` (the tree's frame): a depth-first
+/// search, nearer child first, that skips subtrees whose balls lie farther than the best
+/// distance so far.
+fn nearest_piece(tree: &PatchTree, node: u32, point: DVec3) -> Option<(&Piece, TrianglePoint)> {
+    let mut best: Option<(&Piece, TrianglePoint, f64)> = None;
+    // The tree is balanced: depth below 64 for any mesh that fits in memory.
+    let mut stack = [0_u32; 64];
+    let mut depth = 1;
+    stack[0] = node;
+    while depth > 0 {
+        depth -= 1;
+        let i = stack[depth];
+        let Some(n) = tree.nodes.get(i as usize) else {
+            continue;
+        };
+        let bound = best.as_ref().map_or(f64::INFINITY, |b| b.2);
+        if n.centre.distance(point) - n.radius > bound {
+            continue;
+        }
+        match n.leaf {
+            PatchLeaf::Piece(k) => {
+                if let Some(piece) = tree.pieces.get(k as usize) {
+                    let p = closest_on_triangle(point, &piece.corners);
+                    let d = p.point.distance(point);
+                    if d < bound {
+                        best = Some((piece, p, d));
+                    }
+                }
+            }
+            PatchLeaf::Inner => {
+                if depth + 2 <= stack.len() {
+                    // The nearer child on top, so that the first leaves reached bound the rest.
+                    let (near, far) = match (
+                        tree.nodes.get(i as usize + 1),
+                        tree.nodes.get(n.right as usize),
+                    ) {
+                        (Some(l), Some(r))
+                            if l.centre.distance_squared(point)
+                                > r.centre.distance_squared(point) =>
+                        {
+                            (n.right, i + 1)
+                        }
+                        _ => (i + 1, n.right),
+                    };
+                    stack[depth] = far;
+                    stack[depth + 1] = near;
+                    depth += 2;
+                }
+            }
+        }
+    }
+    best.map(|(piece, p, _)| (piece, p))
+}
+
+/// The corners of a leaf's piece in A's frame (`pose`: its component's pose in A's frame) and in
+/// its own, with the piece.
+fn piece_of<'t>(tree: &'t PatchTree, node: u32, pose: &DPose3) -> Option<(&'t Piece, [DVec3; 3])> {
+    let PatchLeaf::Piece(k) = tree.nodes.get(node as usize)?.leaf else {
+        return None;
+    };
+    let piece = tree.pieces.get(k as usize)?;
+    Some((piece, piece.corners.map(|p| *pose * p)))
+}
+
+/// The seed point of a point with barycentric coordinates `b` in `piece`.
+fn piece_point(side: &Side<'_>, piece: &Piece, b: [f64; 3]) -> Option<SeedPoint> {
+    let t = piece.triangle as usize;
+    (t < side.mesh.triangle_params.len() && t < side.mesh.triangle_faces.len()).then(|| {
+        let c = piece.corners;
+        SeedPoint {
+            component: side.component,
+            local_point: c[0] * b[0] + c[1] * b[1] + c[2] * b[2],
+            location: side.mesh.locate(t, piece.to_triangle(b)),
+        }
+    })
+}
+
+/// The closest points of a critical leaf pair as a seed candidate ranked by their distance.
+fn leaf_seed(
+    (side_a, tree_a, a): (&Side<'_>, &PatchTree, u32),
+    (side_b, tree_b, b): (&Side<'_>, &PatchTree, u32),
+    pose_ab: &DPose3,
+) -> Option<Found> {
+    let (pa, ta) = piece_of(tree_a, a, &DPose3::IDENTITY)?;
+    let (pb, tb) = piece_of(tree_b, b, pose_ab)?;
+    let pair = closest_between_triangles(&ta, &tb);
+    let seed = Seed {
+        a: piece_point(side_a, pa, pair.a.barycentric)?,
+        b: piece_point(side_b, pb, pair.b.barycentric)?,
+    };
+    let radius = tree_a.nodes[a as usize]
+        .radius
+        .max(tree_b.nodes[b as usize].radius);
+    pair.distance.is_finite().then_some(Found {
+        rank: (1, pair.distance),
+        point_a: pair.a.point,
+        point_b: pair.b.point,
+        radius,
+        outside: None,
+        source: Source::Made(seed),
+    })
+}
+
+/// The closest point of a leaf's piece to an apex as a seed candidate. The apex is apex `k` of
+/// `apex_tree` (side `apex_side`), the leaf node `node` of `tree` (side `side`);
+/// `apex_is_a` says which of the two is A.
+fn apex_seed(
+    (apex_side, apex_tree, k): (&Side<'_>, &PatchTree, u32),
+    (side, tree, node): (&Side<'_>, &PatchTree, u32),
+    pose_ab: &DPose3,
+    apex_is_a: bool,
+) -> Option<Found> {
+    let apex = apex_tree.apexes.get(k as usize)?;
+    let (apex_pose, piece_pose) = if apex_is_a {
+        (DPose3::IDENTITY, *pose_ab)
+    } else {
+        (*pose_ab, DPose3::IDENTITY)
+    };
+    let (piece, corners) = piece_of(tree, node, &piece_pose)?;
+    let point = apex_pose * apex.point;
+    let on_piece: TrianglePoint = closest_on_triangle(point, &corners);
+    let apex_point = SeedPoint {
+        component: apex_side.component,
+        local_point: apex.point,
+        location: apex.location,
+    };
+    let piece_seed = piece_point(side, piece, on_piece.barycentric)?;
+    let (seed, point_a, point_b) = if apex_is_a {
+        (
+            Seed {
+                a: apex_point,
+                b: piece_seed,
+            },
+            point,
+            on_piece.point,
+        )
+    } else {
+        (
+            Seed {
+                a: piece_seed,
+                b: apex_point,
+            },
+            on_piece.point,
+            point,
+        )
+    };
+    let distance = point.distance(on_piece.point);
+    distance.is_finite().then_some(Found {
+        rank: (1, distance),
+        point_a,
+        point_b,
+        radius: tree.nodes[node as usize].radius,
+        outside: None,
+        source: Source::Made(seed),
+    })
+}
+
+/// Two apexes within `reach` whose cones allow a critical pair, as a seed candidate.
+fn apex_pair(
+    (side_a, _, apex_a): (&Side<'_>, usize, &crate::patch_tree::Apex),
+    (side_b, _, apex_b): (&Side<'_>, usize, &crate::patch_tree::Apex),
+    pose_ab: &DPose3,
+    reach: f64,
+) -> Option<Found> {
+    let (pa, pb) = (apex_a.point, *pose_ab * apex_b.point);
+    let distance = pa.distance(pb);
+    let cone_b = apex_b.cone.rotated(pose_ab.rotation);
+    let directions = NormalCone::between_balls(pa, 0.0, pb, 0.0);
+    let kinds = CriticalKinds::of(&apex_a.cone, &cone_b, &directions);
+    (distance <= reach && kinds.any()).then_some(Found {
+        rank: (1, distance),
+        point_a: pa,
+        point_b: pb,
+        radius: 0.0,
+        outside: None,
+        source: Source::Made(Seed {
+            a: SeedPoint {
+                component: side_a.component,
+                local_point: apex_a.point,
+                location: apex_a.location,
+            },
+            b: SeedPoint {
+                component: side_b.component,
+                local_point: apex_b.point,
+                location: apex_b.location,
+            },
+        }),
+    })
+}

@@ -1,0 +1,422 @@
+//! Simultaneous traversal of two patch trees ([`crate::patch_tree`]) under a relative pose:
+//! node pairs farther apart than the band, or whose normal cones rule out every critical pair
+//! of the distance (and that cannot intersect), are dropped; pairs certified to hold at most one
+//! local minimum stop there; the rest descend to leaf pairs. Apexes are points traversed
+//! against the other tree.
+
+use crate::normal_cone::{CriticalKinds, NormalBand, NormalCone};
+use crate::patch_tree::{PatchLeaf, PatchNode, PatchTree};
+use geom_param::DPose3;
+use glam::{DMat3, DVec3};
+
+/// Largest half-angle (rad) of a node's normal cone for a pair to be certified: 30°. Wider
+/// patches are not graphs over one plane with a margin.
+pub const CERTIFY_CONE: f64 = std::f64::consts::PI / 6.0;
+
+/// Relative allowance on the curvature bound of a certified pair: the bound must exceed zero
+/// by 5 % of the curvatures' magnitudes (curvature between the sampled corners, which lie at
+/// mesh resolution, differs from the samples by far less).
+pub const CURVATURE_MARGIN: f64 = 0.05;
+
+/// A node pair at which the traversal stopped without dropping it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StopPair {
+    /// Node of A's tree.
+    pub a: u32,
+    /// Node of B's tree.
+    pub b: u32,
+    /// The lower bound (mm) on the distance between their volumes (0 or less: they overlap).
+    pub lower: f64,
+    /// The normal cones allow a critical pair here.
+    pub critical: bool,
+}
+
+/// A node pair where a traversal stopped, kept for the next query of the same pair
+/// ([`crate::cone_front`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrontEntry {
+    /// Node of A's tree.
+    pub a: u32,
+    /// Node of B's tree.
+    pub b: u32,
+    /// For a pair dropped because its volumes were farther apart than the reach: by how much
+    /// (mm), less the motion of B since the front's reference pose, so that the pair stays
+    /// dropped for any pose that moves no point of B's component by more than this from the
+    /// reference pose. Negative for every other stop (dropped by cones, certified, a leaf),
+    /// which the next query tests again.
+    pub slack: f64,
+}
+
+/// What a traversal found. Reuse one across queries.
+#[derive(Clone, Debug, Default)]
+pub struct TraversalOutput {
+    /// Node pairs certified to hold at most one local minimum of the distance (and at most one
+    /// penetration witness): each stands for one seed at most.
+    pub certified: Vec<StopPair>,
+    /// Leaf pairs that could be neither dropped nor certified.
+    pub leaves: Vec<StopPair>,
+    /// Leaves of B's tree reached by an apex of A: (apex index, leaf node).
+    pub apex_a_leaves: Vec<(u32, u32)>,
+    /// Leaves of A's tree reached by an apex of B: (apex index, leaf node).
+    pub apex_b_leaves: Vec<(u32, u32)>,
+    /// Node pairs (and apex-node pairs) examined.
+    pub visited: u32,
+    /// Every node pair where the pair traversal stopped (see [`FrontEntry`]).
+    pub front: Vec<FrontEntry>,
+    stack: Vec<(u32, u32)>,
+}
+
+impl TraversalOutput {
+    /// Empties every list, keeping the allocations.
+    pub fn clear(&mut self) {
+        self.certified.clear();
+        self.leaves.clear();
+        self.apex_a_leaves.clear();
+        self.apex_b_leaves.clear();
+        self.visited = 0;
+        self.front.clear();
+        self.stack.clear();
+    }
+
+    /// Queues a node pair for [`traverse`].
+    pub fn queue(&mut self, a: u32, b: u32) {
+        self.stack.push((a, b));
+    }
+}
+
+/// B's pose in A's frame as a matrix and its transpose, for the node tests.
+#[derive(Clone, Copy, Debug)]
+pub struct PairFrame {
+    /// Rotation of B's frame into A's.
+    pub rotation: DMat3,
+    /// Its inverse.
+    pub inverse: DMat3,
+    /// Translation of B's frame in A's.
+    pub translation: DVec3,
+}
+
+impl PairFrame {
+    /// The frame of `pose_ab` (B's pose in A's frame).
+    #[must_use]
+    pub fn new(pose_ab: &DPose3) -> Self {
+        let rotation = DMat3::from_quat(pose_ab.rotation);
+        Self {
+            rotation,
+            inverse: rotation.transpose(),
+            translation: pose_ab.translation,
+        }
+    }
+}
+
+/// The largest values (mm) of `u · y` and of `-u · y` over the node's volume relative to its
+/// centre (ball of radius `r` intersected with the slab `lo <= a · y <= hi`), for a unit `u`
+/// with `u · a = alpha`.
+///
+/// Writing y = s a + t w with w ⟂ a in the plane of a and u: maximise α s + β t, β = √(1 - α²),
+/// over s in [lo, hi], s² + t² <= r²; for fixed s the best t is √(r² - s²), and the concave
+/// function α s + β √(r² - s²) of s peaks at s = α r (value r), so its maximum over the
+/// interval is at that peak clamped into it. The same for -u with -α.
+#[must_use]
+pub fn support_pair(r: f64, [lo, hi]: [f64; 2], alpha: f64) -> (f64, f64) {
+    let alpha = alpha.clamp(-1.0, 1.0);
+    let beta = (1.0 - alpha * alpha).max(0.0).sqrt();
+    let (lo, hi) = (lo.max(-r), hi.min(r));
+    if lo > hi || lo.is_nan() || hi.is_nan() {
+        return (r, r);
+    }
+    let one = |alpha: f64| {
+        let s = (alpha * r).clamp(lo, hi);
+        alpha * s + beta * (r * r - s * s).max(0.0).sqrt()
+    };
+    (one(alpha), one(-alpha))
+}
+
+/// The largest values (mm) of `u · (x - centre)` and of `-u · (x - centre)` over the node's
+/// volume, for a unit `u` in the node's own frame: over a piece, its corners grown by its
+/// deviation; over an inner node, the ball-and-slab bound ([`support_pair`]).
+#[must_use]
+pub fn extents(tree: &PatchTree, node: &PatchNode, u: DVec3) -> (f64, f64) {
+    if let PatchLeaf::Piece(k) = node.leaf {
+        if let Some(piece) = tree.pieces.get(k as usize) {
+            let c = node.centre;
+            let [p, q, r] = piece.corners.map(|x| u.dot(x - c));
+            return (
+                p.max(q).max(r) + piece.deviation,
+                (-p).max(-q).max(-r) + piece.deviation,
+            );
+        }
+    }
+    support_pair(node.radius, node.slab, u.dot(node.cone.axis))
+}
+
+/// The larger of the gaps between the volumes of node `a` of `tree_a` and node `b` of `tree_b`
+/// (B posed by `frame`) along A's cone axis (A's slab against B's [`extents`]) and along B's
+/// (B's slab against A's): a lower bound (mm) on their distance, since projection onto a unit
+/// vector does not increase distances. `d` is B's centre minus A's and `axis_b` B's axis, both
+/// in A's frame.
+#[must_use]
+pub fn slab_lower_bound(
+    (tree_a, a): (&PatchTree, &PatchNode),
+    (tree_b, b): (&PatchTree, &PatchNode),
+    frame: &PairFrame,
+    d: DVec3,
+    axis_b: DVec3,
+) -> f64 {
+    // Along A's axis: B's extent about t = axis_a · d.
+    let axis_a = a.cone.axis;
+    let t = axis_a.dot(d);
+    let (b_up, b_down) = extents(tree_b, b, frame.inverse * axis_a);
+    let along_a = (t - b_down - a.slab[1]).max(a.slab[0] - t - b_up);
+    // Along B's axis: A's extent about t' = axis_b · (ca - cb).
+    let t = -axis_b.dot(d);
+    let (a_up, a_down) = extents(tree_a, a, axis_b);
+    along_a.max((t - a_down - b.slab[1]).max(b.slab[0] - t - a_up))
+}
+
+/// Whether the node pair holds at most one local minimum of the distance between the exact
+/// surfaces (and at most one penetration witness), so that one seed stands for it.
+/// `rotation` turns B's frame into A's; `axis_b` is B's cone axis in A's frame.
+///
+/// Both nodes must be smooth (no apex, no concave crease, curvature sampled everywhere) with
+/// normal cones of half-angle at most [`CERTIFY_CONE`]. Then each patch is a graph over the
+/// plane Π normal to w, the bisector of A's axis and the reverse of B's, with every normal tilted
+/// from w by at most τ = max(θ_A, θ_B) + ½ angle(axis_A, -axis_B) (below 90°: the cone test
+/// keeps the misalignment below θ_A + θ_B). The gap between the patches (B's height minus A's
+/// along w) has Hessian H_A + H_B, each a graph's height Hessian: its curvature tensor
+/// ([`crate::patch_tree::CurvatureTensor`], library sign, convex positive, both facing each
+/// other) restricted to Π and distorted by the tilt: H = c⁻¹ G^½ S G^½ with G's eigenvalues in
+/// [1, c⁻²], c = cos τ, so ‖H - S‖ <= (c⁻³ - 1)‖S‖. Every sampled tensor of a node lies within
+/// its spread ε of the node's mean C̄ (Frobenius norm, which bounds the spectral norm of the
+/// restriction), so the smallest eigenvalue of the gap's Hessian is at least
+/// λ_min((C̄_A + C̄_B)|Π) - ε_A - ε_B - (c⁻³ - 1)(‖C_A‖ + ‖C_B‖). When that exceeds
+/// [`CURVATURE_MARGIN`] of ‖C_A‖ + ‖C_B‖ (the margin covers curvature between the sampled
+/// corners, which lie at mesh resolution), the gap is strictly convex over the pair: one
+/// minimum at most, whatever its sign. Convex creases inside a patch only add convex kinks to
+/// the gap and are allowed. This certifies crossed cylinders (each flat along one direction) as
+/// well as a ball in a bowl.
+#[must_use]
+pub fn certifiable(a: &PatchNode, b: &PatchNode, axis_b: DVec3, rotation: &DMat3) -> bool {
+    let narrow = CERTIFY_CONE.cos();
+    if !(a.smooth && b.smooth && a.cone.cos >= narrow && b.cone.cos >= narrow) {
+        return false;
+    }
+    let axis_a = a.cone.axis;
+    // cos τ for τ = max(θ_A, θ_B) + μ/2, μ = angle(axis_A, -axis_B), without trigonometry:
+    // cos(μ/2) = √((1 + cos μ)/2), and the cone of larger θ has the smaller cosine.
+    let cos_mu = (-axis_a.dot(axis_b)).clamp(-1.0, 1.0);
+    let (ch, sh) = ((0.5 * (1.0 + cos_mu)).sqrt(), (0.5 * (1.0 - cos_mu)).sqrt());
+    let wide = if a.cone.cos <= b.cone.cos {
+        &a.cone
+    } else {
+        &b.cone
+    };
+    let cos_tilt = wide.cos * ch - wide.sin * sh;
+    if cos_tilt <= 0.0 || cos_tilt.is_nan() {
+        return false;
+    }
+    let Some(w) = (axis_a - axis_b).try_normalize() else {
+        return false;
+    };
+    let (e1, e2) = w.any_orthonormal_pair();
+    let inverse = rotation.transpose();
+    let (f1, f2) = (inverse * e1, inverse * e2);
+    let (ca, cb) = (&a.curvature, &b.curvature);
+    let m11 = ca.form(e1, e1) + cb.form(f1, f1);
+    let m22 = ca.form(e2, e2) + cb.form(f2, f2);
+    let m12 = ca.form(e1, e2) + cb.form(f1, f2);
+    let half_trace = 0.5 * (m11 + m22);
+    let lambda_min = half_trace - (0.25 * (m11 - m22) * (m11 - m22) + m12 * m12).sqrt();
+    let (na, nb) = (
+        ca.norm() + a.curvature_spread,
+        cb.norm() + b.curvature_spread,
+    );
+    let stretch = 1.0 / (cos_tilt * cos_tilt * cos_tilt) - 1.0;
+    let bound = lambda_min - a.curvature_spread - b.curvature_spread - stretch * (na + nb);
+    bound > CURVATURE_MARGIN * (na + nb) && bound.is_finite()
+}
+
+/// The directions from a ball (centre `from`, radius `r_from`) to another at offset `d`
+/// (length `length`) with radius sum `radii`: [`NormalCone::between_balls`] without its square
+/// root, which the caller has.
+fn directions(d: DVec3, length: f64, radii: f64) -> NormalCone {
+    if length > radii {
+        let sin = radii / length;
+        NormalCone {
+            axis: d / length,
+            cos: (1.0 - sin * sin).max(0.0).sqrt(),
+            sin,
+        }
+    } else {
+        NormalCone::ALL
+    }
+}
+
+/// Traverses `tree_a` against `tree_b` (B's tree posed by `frame` in A's frame) and fills
+/// `out` with the certified node pairs and the leaf pairs left, dropping every node pair
+/// - whose volumes are farther apart than `reach` (mm), or
+/// - whose volumes do not overlap and whose normal cones rule out both kinds of critical pair
+///   ([`CriticalKinds`]).
+///
+/// A pair that may hold a critical pair and is [`certifiable`] stops there; otherwise the node
+/// with the larger ball is split (leaves against inner nodes: the inner node). The cheap tests
+/// come first: the balls, then the cones (disjoint balls without a critical pair are dropped),
+/// then the slabs.
+///
+/// Starts from the pairs [`TraversalOutput::queue`]d (the root pair, `(0, 0)`, for a fresh
+/// traversal). Every pair where it stops goes to `out.front`, a pair dropped by distance with
+/// its margin less `moved` (mm), the motion of B since the front's reference pose.
+pub fn traverse(
+    tree_a: &PatchTree,
+    tree_b: &PatchTree,
+    frame: &PairFrame,
+    (reach, moved): (f64, f64),
+    out: &mut TraversalOutput,
+) {
+    let (nodes_a, nodes_b) = (&tree_a.nodes, &tree_b.nodes);
+    if nodes_a.is_empty() || nodes_b.is_empty() {
+        out.stack.clear();
+        return;
+    }
+    while let Some((i, j)) = out.stack.pop() {
+        let (Some(a), Some(b)) = (nodes_a.get(i as usize), nodes_b.get(j as usize)) else {
+            continue;
+        };
+        out.visited = out.visited.saturating_add(1);
+        let stopped = |slack: f64| FrontEntry { a: i, b: j, slack };
+        let cb = frame.rotation * b.centre + frame.translation;
+        let d = cb - a.centre;
+        let radii = a.radius + b.radius;
+        let apart = reach + radii;
+        let length_squared = d.length_squared();
+        if length_squared > apart * apart {
+            out.front
+                .push(stopped(length_squared.sqrt() - apart - moved));
+            continue;
+        }
+        let axis_b = frame.rotation * b.cone.axis;
+        let cone_b = NormalCone {
+            axis: axis_b,
+            ..b.cone
+        };
+        let length = length_squared.sqrt();
+        let towards_b = directions(d, length, radii);
+        let mut kinds = CriticalKinds::of(&a.cone, &cone_b, &towards_b);
+        if kinds.any() && !(a.band.is_all() && b.band.is_all()) {
+            let band_b = b.band.rotated_by(&frame.rotation);
+            kinds = kinds.with_bands((&a.cone, &a.band), (&cone_b, &band_b), &towards_b);
+        }
+        let critical = kinds.any();
+        // Disjoint balls and no critical pair: nothing to find here.
+        if !critical && length > radii {
+            out.front.push(stopped(-1.0));
+            continue;
+        }
+        let lower =
+            slab_lower_bound((tree_a, a), (tree_b, b), frame, d, axis_b).max(length - radii);
+        if lower > reach {
+            out.front.push(stopped(lower - reach - moved));
+            continue;
+        }
+        if !critical && lower > 0.0 {
+            out.front.push(stopped(-1.0));
+            continue;
+        }
+        let stop = StopPair {
+            a: i,
+            b: j,
+            lower,
+            critical,
+        };
+        if critical && certifiable(a, b, axis_b, &frame.rotation) {
+            out.certified.push(stop);
+            out.front.push(stopped(-1.0));
+            continue;
+        }
+        match (a.is_leaf(), b.is_leaf()) {
+            (true, true) => {
+                out.leaves.push(stop);
+                out.front.push(stopped(-1.0));
+            }
+            (true, false) => {
+                out.stack.push((i, j + 1));
+                out.stack.push((i, b.right));
+            }
+            (false, true) => {
+                out.stack.push((i + 1, j));
+                out.stack.push((a.right, j));
+            }
+            (false, false) => {
+                if a.radius >= b.radius {
+                    out.stack.push((i + 1, j));
+                    out.stack.push((a.right, j));
+                } else {
+                    out.stack.push((i, j + 1));
+                    out.stack.push((i, b.right));
+                }
+            }
+        }
+    }
+}
+
+/// Traverses `tree` (in its own frame) against a point `point` with normal cone `cone` (both in
+/// the tree's frame), the apex `apex` of the other component, and appends to
+/// `out.apex_a_leaves` (when `point_is_a`: the point is A's, the tree B's) or to
+/// `out.apex_b_leaves` every leaf within `reach` (mm) whose cone allows a critical pair with the
+/// point (the cone test is not symmetric).
+pub fn traverse_point(
+    tree: &PatchTree,
+    (apex, point, cone): (u32, DVec3, &NormalCone),
+    point_is_a: bool,
+    reach: f64,
+    out: &mut TraversalOutput,
+) {
+    if tree.nodes.is_empty() {
+        return;
+    }
+    out.stack.clear();
+    out.stack.push((0, 0));
+    while let Some((i, _)) = out.stack.pop() {
+        out.visited = out.visited.saturating_add(1);
+        let n = &tree.nodes[i as usize];
+        let d = n.centre - point;
+        let apart = reach + n.radius;
+        let length_squared = d.length_squared();
+        if length_squared > apart * apart {
+            continue;
+        }
+        let length = length_squared.sqrt();
+        let t = n.cone.axis.dot(-d);
+        if (n.slab[0] - t).max(t - n.slab[1]) > reach {
+            continue;
+        }
+        let from_point = directions(d, length, n.radius);
+        let all = NormalBand::ALL;
+        let kinds = if point_is_a {
+            CriticalKinds::of(cone, &n.cone, &from_point).with_bands(
+                (cone, &all),
+                (&n.cone, &n.band),
+                &from_point,
+            )
+        } else {
+            let towards_point = from_point.negated();
+            CriticalKinds::of(&n.cone, cone, &towards_point).with_bands(
+                (&n.cone, &n.band),
+                (cone, &all),
+                &towards_point,
+            )
+        };
+        if !kinds.any() {
+            continue;
+        }
+        if n.is_leaf() {
+            if point_is_a {
+                out.apex_a_leaves.push((apex, i));
+            } else {
+                out.apex_b_leaves.push((apex, i));
+            }
+        } else {
+            out.stack.push((i + 1, 0));
+            out.stack.push((n.right, 0));
+        }
+    }
+}

@@ -1,0 +1,119 @@
+//! Intersecting mesh triangles (exact predicates) and what both triangle paths report from
+//! them: the intersecting pairs, one witness point per connected region, and one seed per
+//! region for Stage 3 to confirm the penetration on the exact surfaces.
+
+use crate::collision_regions::{IntersectionSegment, RegionScratch, group_regions, region_centres};
+use crate::mesh_phase::{MeshOutput, MeshStats};
+use crate::plane_filter::clearly_apart;
+use crate::query_side::Side;
+use crate::triangle_intersection::{TriangleContact, intersect_triangles, triangles_intersect};
+use geom_param::{DPose3, Seed};
+use glam::DVec3;
+
+/// Runs the exact triangle test on every candidate pair (B's triangles moved into A's frame)
+/// and collects the intersection segments; a coplanar overlap contributes its polygon's edges.
+pub(crate) fn intersect_candidates(
+    (positions_a, triangles_a): (&[DVec3], &[[u32; 3]]),
+    (positions_b, triangles_b): (&[DVec3], &[[u32; 3]]),
+    pose_ab: &DPose3,
+    candidates: &[(u32, u32)],
+    segments: &mut Vec<IntersectionSegment>,
+    stats: &mut MeshStats,
+) {
+    segments.clear();
+    for &(ta, tb) in candidates {
+        let (Some(t1), Some(t2)) = (
+            corners(positions_a, triangles_a, ta),
+            corners(positions_b, triangles_b, tb),
+        ) else {
+            continue;
+        };
+        let t2 = t2.map(|p| *pose_ab * p);
+        stats.triangle_pairs_tested = stats.triangle_pairs_tested.saturating_add(1);
+        // A floating-point plane filter, then the boolean exact test (same decision as the full
+        // one without computing points): cheaper for the many candidates that do not meet.
+        if clearly_apart(&t1, &t2) || !triangles_intersect(&t1, &t2) {
+            continue;
+        }
+        let segment = |start, end| IntersectionSegment {
+            a_triangle: ta,
+            b_triangle: tb,
+            start,
+            end,
+        };
+        match intersect_triangles(&t1, &t2) {
+            TriangleContact::Disjoint => {}
+            TriangleContact::Segment { a, b } => segments.push(segment(a, b)),
+            TriangleContact::Coplanar { points } => {
+                let n = points.len();
+                segments.extend((0..n).map(|i| segment(points[i], points[(i + 1) % n])));
+            }
+        }
+    }
+}
+
+/// The corners of triangle `t`, if its indices resolve.
+pub(crate) fn corners(positions: &[DVec3], triangles: &[[u32; 3]], t: u32) -> Option<[DVec3; 3]> {
+    let tri = triangles.get(t as usize)?;
+    Some([
+        *positions.get(tri[0] as usize)?,
+        *positions.get(tri[1] as usize)?,
+        *positions.get(tri[2] as usize)?,
+    ])
+}
+
+/// Reports intersecting mesh triangles (`segments`, from [`intersect_candidates`] on the two
+/// meshes): every intersecting pair into `out.penetrating_pairs`, one centre per connected
+/// region into `out.penetration_centres`, one seed per region (the centre projected onto both
+/// meshes) into `out.seeds`, and the region count into the stats. Nothing when `segments` is
+/// empty.
+pub(crate) fn report_mesh_intersections(
+    side_a: &Side<'_>,
+    side_b: &Side<'_>,
+    pose_ab: &DPose3,
+    segments: &[IntersectionSegment],
+    regions_scratch: &mut RegionScratch,
+    region_of: &mut Vec<u32>,
+    out: &mut MeshOutput,
+) {
+    if segments.is_empty() {
+        return;
+    }
+    out.penetrating_pairs
+        .extend(segments.iter().map(|s| (s.a_triangle, s.b_triangle)));
+    out.penetrating_pairs.dedup();
+    let regions = group_regions(segments, regions_scratch, region_of);
+    region_centres(
+        segments,
+        region_of,
+        regions,
+        regions_scratch,
+        &mut out.penetration_centres,
+    );
+    out.stats.regions += regions;
+    push_region_seeds(
+        side_a,
+        side_b,
+        pose_ab,
+        &out.penetration_centres,
+        &mut out.seeds,
+    );
+}
+
+/// One seed per region centre (A's frame): the centre projected onto both meshes.
+pub(crate) fn push_region_seeds(
+    side_a: &Side<'_>,
+    side_b: &Side<'_>,
+    pose_ab: &DPose3,
+    centres: &[DVec3],
+    seeds: &mut Vec<Seed>,
+) {
+    let inverse = pose_ab.inverse();
+    for &centre in centres {
+        let a = side_a.seed_side.seed_point(centre, f64::MAX);
+        let b = side_b.seed_side.seed_point(inverse * centre, f64::MAX);
+        if let (Some(a), Some(b)) = (a, b) {
+            seeds.push(Seed { a, b });
+        }
+    }
+}

@@ -1,0 +1,944 @@
+//! A hierarchy of exact surface patches over one component: every node bounds the exact
+//! surface of a set of mesh triangle pieces (and apex points) by a ball, a slab along its
+//! normal cone's axis and the cone itself, and carries the mean curvature tensor of the surface
+//! with a bound on its spread, so that a pair of nodes can be pruned, or certified to hold at
+//! most one local minimum of distance, without looking at its triangles.
+//!
+//! Built once per component from the [`ComponentMesh`] and the exact [`Solid`] (through the
+//! `Surface` trait only: the faces' normals and derivatives at parameters interpolated from the
+//! triangles' corner parameters), so it works on every surface kind the mesh covers.
+//!
+//! Leaves are *pieces* of mesh triangles: a triangle much longer than it is wide (a straight
+//! profile line gives triangles as long as the whole face) is bisected along its longest edge
+//! until no piece is more than [`MAX_ASPECT`] times longer than the triangle is wide, so that every leaf is
+//! spatially compact and its normals and curvature are sampled at its own corners.
+
+use crate::normal_cone::{NormalBand, NormalCone};
+use geom_param::{
+    ComponentMesh, EdgeConvexity, EdgeId, FaceId, FeatureLocation, Solid, SurfacePoint,
+};
+use glam::{DMat2, DMat3, DVec2, DVec3};
+
+/// What a node is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PatchLeaf {
+    /// An inner node: its children are the next node and [`PatchNode::right`].
+    Inner,
+    /// A leaf holding piece `k` of [`PatchTree::pieces`].
+    Piece(u32),
+}
+
+/// One node of a [`PatchTree`]. All of it in the component's object frame (mm).
+///
+/// The exact surface of the node's pieces (the points S(u, v) over their parameter triangles)
+/// and the pieces themselves lie in the ball (`centre`, `radius`) and in the slab
+/// `slab[0] <= cone.axis · (x - centre) <= slab[1]`: both are built from the pieces' corners
+/// and grown by each piece's bound on its distance to its exact surface (at most the mesh's
+/// chordal error, [`ComponentMesh::chordal_error`]; see `piece_deviation`). `cone` contains every outward normal of that
+/// exact surface, including the normals of the creases between its faces; see
+/// [`PatchTree::build`] for how.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PatchNode {
+    /// Centre of the bounding ball.
+    pub centre: DVec3,
+    /// Radius of the bounding ball.
+    pub radius: f64,
+    /// Cap containing every outward normal of the node's exact surface.
+    pub cone: NormalCone,
+    /// A band containing them too, about the axis their spread is narrowest around (a
+    /// cylinder's axis for a strip wrapped around it); [`NormalBand::ALL`] where the cap is
+    /// narrow enough on its own (half-angle below 45°).
+    pub band: NormalBand,
+    /// The slab along `cone.axis`, relative to `centre`: [lowest, highest].
+    pub slab: [f64; 2],
+    /// Centre of the (grown) axis-aligned bounding box, relative to `centre`.
+    pub box_offset: DVec3,
+    /// Half-extents of the axis-aligned bounding box (the volume also lies in this box).
+    pub half_extents: DVec3,
+    /// Mean of the curvature tensors sampled at every corner of the node's pieces, each
+    /// restricted to the plane normal to `cone.axis` (P C P with P = I - axis axisᵀ; 1/mm; see
+    /// [`CurvatureTensor`]).
+    pub curvature: CurvatureTensor,
+    /// Largest Frobenius distance (1/mm) from a sampled tensor, restricted likewise, to
+    /// `curvature`: infinite when some corner has no curvature. (Restricting first makes this
+    /// a second-order quantity in the cone's angle: a tangent plane turned by φ changes the
+    /// restriction of its tensor by O(φ²) only.)
+    pub curvature_spread: f64,
+    /// The node's surface is smooth enough to certify pairs: every corner had a tangent plane
+    /// and curvature, and no corner lies on a concave crease or at an apex.
+    pub smooth: bool,
+    /// Index of the second child (the first is the next node); unused for leaves.
+    pub right: u32,
+    /// Leaf payload, or [`PatchLeaf::Inner`].
+    pub leaf: PatchLeaf,
+    /// A piece of the node near its centre.
+    pub representative: u32,
+    /// The exact surface point at the representative piece's centroid parameters (object
+    /// frame): with `anchor_normal` and `curvature`, a second-order model of the node's patch.
+    pub anchor: DVec3,
+    /// The exact outward normal there (the cone's axis where the face has none).
+    pub anchor_normal: DVec3,
+}
+
+impl PatchNode {
+    /// Whether this node is a leaf.
+    #[must_use]
+    pub fn is_leaf(&self) -> bool {
+        self.leaf != PatchLeaf::Inner
+    }
+}
+
+/// A piece of a mesh triangle: the triangle itself, or a part cut from it by bisections.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Piece {
+    /// The mesh triangle.
+    pub triangle: u32,
+    /// Barycentric coordinates (in the triangle) of the piece's three corners.
+    pub barycentric: [DVec3; 3],
+    /// The corners (object frame).
+    pub corners: [DVec3; 3],
+    /// Bound (mm) on the distance between the piece and its exact surface (see
+    /// `piece_deviation`).
+    pub deviation: f64,
+}
+
+impl Piece {
+    /// The triangle's barycentric coordinates of the point with coordinates `b` in the piece.
+    #[must_use]
+    pub fn to_triangle(&self, b: [f64; 3]) -> [f64; 3] {
+        let [p, q, r] = self.barycentric;
+        (p * b[0] + q * b[1] + r * b[2]).to_array()
+    }
+
+    /// The face and the parameters of the piece's centroid, from the triangle's corner
+    /// parameters (`None` when the triangle does not resolve).
+    #[must_use]
+    pub fn centroid_params(&self, mesh: &ComponentMesh) -> Option<(FaceId, DVec2)> {
+        let t = self.triangle as usize;
+        let face = *mesh.triangle_faces.get(t)?;
+        let params = mesh.triangle_params.get(t)?;
+        let b = (self.barycentric[0] + self.barycentric[1] + self.barycentric[2]) / 3.0;
+        let uv = DVec2::from(params[0]) * b.x
+            + DVec2::from(params[1]) * b.y
+            + DVec2::from(params[2]) * b.z;
+        Some((face, uv))
+    }
+}
+
+/// A point where a face has no tangent plane (a cone's apex): kept apart from the tree (its
+/// pieces carry only the normals around it) and queried as a point against the other tree, with
+/// the apex's cone of normals.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Apex {
+    /// The mesh vertex.
+    pub vertex: u32,
+    /// Its position (object frame, exact: mesh vertices lie on the surface).
+    pub point: DVec3,
+    /// Its exact location.
+    pub location: FeatureLocation,
+    /// A cap containing its normals: the normals of the faces around it and the mesh's vertex
+    /// normal there.
+    pub cone: NormalCone,
+}
+
+/// The patch hierarchy of one component: nodes in depth-first order (node 0 is the root), the
+/// pieces its leaves refer to, and the apexes (outside the tree).
+#[derive(Clone, Debug, Default)]
+pub struct PatchTree {
+    /// Nodes, root first; empty for an empty mesh.
+    pub nodes: Vec<PatchNode>,
+    /// Triangle pieces.
+    pub pieces: Vec<Piece>,
+    /// Apex points.
+    pub apexes: Vec<Apex>,
+    /// The mesh's chordal error (mm): no piece's volume is grown by more.
+    pub inflation: f64,
+}
+
+/// Largest ratio of a piece's longest edge to its triangle's height over the triangle's
+/// longest edge: longer pieces are bisected at the midpoint of their longest edge.
+pub const MAX_ASPECT: f64 = 4.0;
+
+/// Most bisections of one triangle (2^12 pieces at most).
+const MAX_BISECTIONS: u32 = 12;
+
+/// Angle (rad) every piece's cone is widened by beyond its sampled normals: the rounding of
+/// the normals themselves is far below it.
+const NORMAL_FLOOR: f64 = 1e-6;
+
+/// Fraction of the angular spread of a piece's sampled face normals (at its corners, edge
+/// midpoints and centroid) added to its cone: the exact normal inside the piece lies, to first
+/// order, in the spherical hull of the corner normals (the normal map is smooth and the piece
+/// small against the curvature radius), which the sampled cap already contains; the samples
+/// inside the piece catch the second-order bending of the normal map, and between samples half
+/// a piece apart what is left is of third order, far below a tenth of the spread.
+const INTERIOR_SPREAD: f64 = 0.1;
+
+/// Per-leaf data gathered before the tree is built.
+struct Item {
+    corners: [DVec3; 3],
+    count: usize,
+    /// Bound (mm) on the distance between the item and its exact surface.
+    deviation: f64,
+    cone: NormalCone,
+    /// Curvature tensors at the corners (meaningful where the item is smooth).
+    tensors: [CurvatureTensor; 3],
+    smooth: bool,
+    leaf: PatchLeaf,
+}
+
+impl Item {
+    fn points(&self) -> &[DVec3] {
+        &self.corners[..self.count]
+    }
+
+    fn centroid(&self) -> DVec3 {
+        self.points().iter().sum::<DVec3>() / self.count as f64
+    }
+}
+
+/// Where a piece's corner lies on the solid, as far as the cone and the certificate care.
+enum CornerFeature {
+    /// Inside a face.
+    Interior,
+    /// At mesh vertex `v` (on an edge or a vertex of the solid when its location says so).
+    Vertex(u32),
+    /// On the mesh edge between vertices `i` and `j`, both on solid edge `edge` (the edge's
+    /// chord): a crease.
+    Crease { i: u32, j: u32, edge: EdgeId },
+}
+
+impl PatchTree {
+    /// Builds the hierarchy of `mesh`, a component mesh of `solid`.
+    ///
+    /// Normals per piece: the exact outward normal of the triangle's face at each corner's
+    /// parameters (`Surface::normal`) and at its edge midpoints and centroid, the cone about them
+    /// widened by a tenth of their spread (`INTERIOR_SPREAD`); where a corner lies on an edge or vertex of the solid, the mesh's
+    /// vertex normal too (the mean of the faces' normals there, interpolated along a crease's
+    /// chord), so the pieces on either side of a crease together cover its arc of normals. A
+    /// corner where the face has no normal is an apex: its pieces keep only their other corners'
+    /// normals, and the apex becomes a leaf whose cone bounds the normals of every piece around
+    /// it and the vertex normal. Curvature tensors are sampled at every corner. Triangles with
+    /// an index or parameter that does not resolve get the whole sphere as cone and are not
+    /// smooth.
+    #[must_use]
+    pub fn build(mesh: &ComponentMesh, solid: &Solid) -> Self {
+        let inflation = if mesh.chordal_error.is_finite() {
+            mesh.chordal_error.max(0.0)
+        } else {
+            0.0
+        };
+        let mut items = Vec::with_capacity(mesh.triangles.len());
+        let mut pieces = Vec::with_capacity(mesh.triangles.len());
+        let mut apex_normals: Vec<(u32, Vec<DVec3>)> = Vec::new();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            let Some(corners) = corners_of(mesh, tri) else {
+                continue;
+            };
+            split_triangle(t as u32, corners, &mut pieces);
+        }
+        for (k, piece) in pieces.iter_mut().enumerate() {
+            let item = piece_item(mesh, solid, piece, k as u32, &mut apex_normals);
+            piece.deviation = item.deviation;
+            items.push(item);
+        }
+        let mut apexes = Vec::with_capacity(apex_normals.len());
+        for (vertex, mut normals) in apex_normals {
+            let v = vertex as usize;
+            let (Some(&point), Some(&location)) =
+                (mesh.positions.get(v), mesh.vertex_locations.get(v))
+            else {
+                continue;
+            };
+            if let Some(&n) = mesh.normals.get(v) {
+                normals.push(n);
+            }
+            let cone = NormalCone::bounding(&normals).widened(NORMAL_FLOOR);
+            apexes.push(Apex {
+                vertex,
+                point,
+                location,
+                cone,
+            });
+        }
+        let mut nodes = Vec::with_capacity(2 * items.len());
+        let mut order: Vec<u32> = (0..items.len() as u32).collect();
+        if !order.is_empty() {
+            build_node(&items, &mut order, &mut nodes);
+        }
+        for node in &mut nodes {
+            let anchor = pieces
+                .get(node.representative as usize)
+                .and_then(|piece| anchor_of(mesh, solid, piece));
+            (node.anchor, node.anchor_normal) = anchor.unwrap_or((node.centre, node.cone.axis));
+        }
+        Self {
+            nodes,
+            pieces,
+            apexes,
+            inflation,
+        }
+    }
+}
+
+fn corners_of(mesh: &ComponentMesh, tri: &[u32; 3]) -> Option<[DVec3; 3]> {
+    Some([
+        *mesh.positions.get(tri[0] as usize)?,
+        *mesh.positions.get(tri[1] as usize)?,
+        *mesh.positions.get(tri[2] as usize)?,
+    ])
+}
+
+/// The exact point and outward normal at the centroid parameters of `piece`.
+fn anchor_of(mesh: &ComponentMesh, solid: &Solid, piece: &Piece) -> Option<(DVec3, DVec3)> {
+    let (face, uv) = piece.centroid_params(mesh)?;
+    let surface = &solid.faces.get(face.0 as usize)?.surface;
+    let [du, dv] = surface.domain();
+    let (u, v) = (du.normalize(uv.x), dv.normalize(uv.y));
+    let point = surface.eval(u, v).point;
+    let normal = surface.normal(u, v)?;
+    (point.is_finite() && normal.is_finite()).then_some((point, normal))
+}
+
+/// The longest edge of a triangle (corner indices) and its length.
+fn longest_edge(c: &[DVec3; 3]) -> ((usize, usize), f64) {
+    [(0, 1), (1, 2), (2, 0)]
+        .into_iter()
+        .map(|(i, j)| ((i, j), c[i].distance(c[j])))
+        .max_by(|x, y| x.1.total_cmp(&y.1))
+        .unwrap_or(((0, 1), 0.0))
+}
+
+/// Appends the pieces of triangle `t` (corners `corners`): with h the triangle's height over
+/// its longest edge (its width), pieces are bisected at the midpoint of their longest edge
+/// while that edge exceeds [`MAX_ASPECT`] h. (Measured against the triangle's width rather than
+/// each piece's own, so that the needle-like pieces at the tip of a fan triangle, as narrow as
+/// they are short, stop splitting.)
+fn split_triangle(t: u32, corners: [DVec3; 3], pieces: &mut Vec<Piece>) {
+    let (_, longest) = longest_edge(&corners);
+    let twice_area = (corners[1] - corners[0])
+        .cross(corners[2] - corners[0])
+        .length();
+    let limit = MAX_ASPECT * twice_area / longest;
+    let mut stack = vec![(
+        Piece {
+            triangle: t,
+            barycentric: [DVec3::X, DVec3::Y, DVec3::Z],
+            corners,
+            deviation: 0.0,
+        },
+        0,
+    )];
+    while let Some((piece, depth)) = stack.pop() {
+        let c = piece.corners;
+        let ((i, j), longest) = longest_edge(&c);
+        let settled = longest <= limit || longest.is_nan();
+        if depth >= MAX_BISECTIONS || settled || limit <= 0.0 || limit.is_nan() {
+            pieces.push(piece);
+            continue;
+        }
+        let mid = 0.5 * (c[i] + c[j]);
+        let mid_b = 0.5 * (piece.barycentric[i] + piece.barycentric[j]);
+        // Two halves, each keeping the corner order (and so the orientation) of the piece.
+        let mut first = piece;
+        first.corners[j] = mid;
+        first.barycentric[j] = mid_b;
+        let mut second = piece;
+        second.corners[i] = mid;
+        second.barycentric[i] = mid_b;
+        stack.push((first, depth + 1));
+        stack.push((second, depth + 1));
+    }
+}
+
+/// A bound (mm) on the distance between `piece` and its exact surface (points with the same
+/// parameters), at most the mesh's `chordal_error`.
+///
+/// Between corners that lie on the surface, the deviation of a smooth surface from the plane
+/// piece is, to second order, a quadratic f = Σ c_ij b_i b_j in the barycentric coordinates that
+/// vanishes at the corners; its values at the edge midpoints are c_ij / 4, and |f| <=
+/// max |c_ij| Σ b_i b_j <= max |c_ij| / 3 = 4/3 of the largest midpoint value. The bound is
+/// twice the largest deviation sampled at the three edge midpoints (leaving the third-order
+/// remainder, O(h³) against the O(h²) samples, a wide margin), plus a rounding allowance of
+/// 1e-12 of the coordinates' magnitude, and never more than the chordal error. An exactly flat
+/// piece gets the rounding allowance alone.
+fn piece_deviation(
+    piece: &Piece,
+    params: &[[f64; 2]; 3],
+    surface: &dyn geom_param::Surface,
+    chordal_error: f64,
+) -> f64 {
+    let [du, dv] = surface.domain();
+    let mut largest = 0.0_f64;
+    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+        let b = 0.5 * (piece.barycentric[i] + piece.barycentric[j]);
+        let uv = DVec2::from(params[0]) * b.x
+            + DVec2::from(params[1]) * b.y
+            + DVec2::from(params[2]) * b.z;
+        let exact = surface.eval(du.normalize(uv.x), dv.normalize(uv.y)).point;
+        let on_piece = 0.5 * (piece.corners[i] + piece.corners[j]);
+        let d = exact.distance(on_piece);
+        if !d.is_finite() {
+            return chordal_error;
+        }
+        largest = largest.max(d);
+    }
+    let magnitude = piece
+        .corners
+        .iter()
+        .map(|c| c.abs().max_element())
+        .fold(0.0, f64::max);
+    (2.0 * largest + 1e-12 * magnitude).min(chordal_error)
+}
+
+/// Where corner `k` of `piece` lies (see [`CornerFeature`]).
+fn corner_feature(mesh: &ComponentMesh, piece: &Piece, k: usize) -> CornerFeature {
+    let Some(tri) = mesh.triangles.get(piece.triangle as usize) else {
+        return CornerFeature::Interior;
+    };
+    let b = piece.barycentric[k].to_array();
+    let zero = |m: usize| b[m] == 0.0;
+    match (zero(0), zero(1), zero(2)) {
+        (false, true, true) => CornerFeature::Vertex(tri[0]),
+        (true, false, true) => CornerFeature::Vertex(tri[1]),
+        (true, true, false) => CornerFeature::Vertex(tri[2]),
+        (false, false, true) | (true, false, false) | (false, true, false) => {
+            let (m, n) = if zero(2) {
+                (0, 1)
+            } else if zero(0) {
+                (1, 2)
+            } else {
+                (0, 2)
+            };
+            let (i, j) = (tri[m], tri[n]);
+            match (
+                mesh.vertex_locations.get(i as usize),
+                mesh.vertex_locations.get(j as usize),
+            ) {
+                (
+                    Some(FeatureLocation::Edge { id: e1, .. }),
+                    Some(FeatureLocation::Edge { id: e2, .. }),
+                ) if e1 == e2 => CornerFeature::Crease { i, j, edge: *e1 },
+                _ => CornerFeature::Interior,
+            }
+        }
+        _ => CornerFeature::Interior,
+    }
+}
+
+/// The leaf item of `piece` (number `k`); records its apex corners in `apex_normals`.
+fn piece_item(
+    mesh: &ComponentMesh,
+    solid: &Solid,
+    piece: &Piece,
+    k: u32,
+    apex_normals: &mut Vec<(u32, Vec<DVec3>)>,
+) -> Item {
+    let chordal_error = if mesh.chordal_error.is_finite() {
+        mesh.chordal_error.max(0.0)
+    } else {
+        0.0
+    };
+    let t = piece.triangle as usize;
+    let broken = Item {
+        corners: piece.corners,
+        count: 3,
+        deviation: chordal_error,
+        cone: NormalCone::ALL,
+        tensors: [CurvatureTensor::ZERO; 3],
+        smooth: false,
+        leaf: PatchLeaf::Piece(k),
+    };
+    let (Some(face), Some(params)) = (mesh.triangle_faces.get(t), mesh.triangle_params.get(t))
+    else {
+        return broken;
+    };
+    let Some(face_data) = solid.faces.get(face.0 as usize) else {
+        return broken;
+    };
+    let surface = &face_data.surface;
+    let [du, dv] = surface.domain();
+    let mut face_normals: [DVec3; 3] = [DVec3::ZERO; 3];
+    let mut face_count = 0;
+    let mut extra: [DVec3; 3] = [DVec3::ZERO; 3];
+    let mut extra_count = 0;
+    let mut tensors = [CurvatureTensor::ZERO; 3];
+    let mut smooth = true;
+    let mut apex_corners: [Option<u32>; 3] = [None; 3];
+    let edge_is_concave = |id: EdgeId| {
+        solid
+            .edges
+            .get(id.0 as usize)
+            .is_none_or(|e| e.convexity == EdgeConvexity::Concave)
+    };
+    for (c, (b, apex_corner)) in piece
+        .barycentric
+        .iter()
+        .copied()
+        .zip(apex_corners.iter_mut())
+        .enumerate()
+    {
+        let uv = DVec2::from(params[0]) * b.x
+            + DVec2::from(params[1]) * b.y
+            + DVec2::from(params[2]) * b.z;
+        let (u, v) = (du.normalize(uv.x), dv.normalize(uv.y));
+        let feature = corner_feature(mesh, piece, c);
+        match surface.normal(u, v) {
+            Some(n) if n.is_finite() => {
+                match CurvatureTensor::at(&surface.eval(u, v), n) {
+                    Some(tensor) => tensors[face_count] = tensor,
+                    None => smooth = false,
+                }
+                face_normals[face_count] = n;
+                face_count += 1;
+            }
+            _ => {
+                smooth = false;
+                if let CornerFeature::Vertex(vertex) = feature {
+                    *apex_corner = Some(vertex);
+                }
+                continue;
+            }
+        }
+        match feature {
+            CornerFeature::Interior => {}
+            CornerFeature::Vertex(vertex) => match mesh.vertex_locations.get(vertex as usize) {
+                Some(FeatureLocation::Edge { id, .. }) => {
+                    if let Some(&n) = mesh.normals.get(vertex as usize) {
+                        extra[extra_count] = n;
+                        extra_count += 1;
+                    }
+                    smooth &= !edge_is_concave(*id);
+                }
+                Some(FeatureLocation::Vertex { .. }) => {
+                    if let Some(&n) = mesh.normals.get(vertex as usize) {
+                        extra[extra_count] = n;
+                        extra_count += 1;
+                    }
+                }
+                _ => {}
+            },
+            CornerFeature::Crease { i, j, edge } => {
+                let b = b.to_array();
+                let tri = mesh.triangles[t];
+                let weight = |v: u32| (0..3).find(|&m| tri[m] == v).map_or(0.0, |m| b[m]);
+                if let (Some(&ni), Some(&nj)) =
+                    (mesh.normals.get(i as usize), mesh.normals.get(j as usize))
+                {
+                    if let Some(n) = (ni * weight(i) + nj * weight(j)).try_normalize() {
+                        extra[extra_count] = n;
+                        extra_count += 1;
+                    }
+                }
+                smooth &= !edge_is_concave(edge);
+            }
+        }
+    }
+    if face_count == 0 {
+        return broken;
+    }
+    let face_normals = &face_normals[..face_count];
+    for vertex in apex_corners.into_iter().flatten() {
+        match apex_normals.iter_mut().find(|(v, _)| *v == vertex) {
+            Some((_, list)) => list.extend_from_slice(face_normals),
+            None => apex_normals.push((vertex, face_normals.to_vec())),
+        }
+    }
+    // The face's normals inside the piece too: at its edge midpoints and centroid.
+    let mut all = [DVec3::ZERO; 10];
+    all[..face_count].copy_from_slice(face_normals);
+    let mut count = face_count;
+    let inside = [
+        (piece.barycentric[0] + piece.barycentric[1]) * 0.5,
+        (piece.barycentric[1] + piece.barycentric[2]) * 0.5,
+        (piece.barycentric[2] + piece.barycentric[0]) * 0.5,
+        (piece.barycentric[0] + piece.barycentric[1] + piece.barycentric[2]) / 3.0,
+    ];
+    for b in inside {
+        let uv = DVec2::from(params[0]) * b.x
+            + DVec2::from(params[1]) * b.y
+            + DVec2::from(params[2]) * b.z;
+        if let Some(n) = surface.normal(du.normalize(uv.x), dv.normalize(uv.y)) {
+            if n.is_finite() {
+                all[count] = n;
+                count += 1;
+            }
+        }
+    }
+    let sampled = &all[..count];
+    let spread = sampled
+        .iter()
+        .flat_map(|a| sampled.iter().map(move |b| a.angle_between(*b)))
+        .fold(0.0, f64::max);
+    all[count..count + extra_count].copy_from_slice(&extra[..extra_count]);
+    let cone = NormalCone::bounding(&all[..count + extra_count])
+        .widened(INTERIOR_SPREAD * spread + NORMAL_FLOOR);
+    Item {
+        corners: piece.corners,
+        count: 3,
+        deviation: piece_deviation(piece, params, surface.as_ref(), chordal_error),
+        cone,
+        tensors,
+        smooth: smooth && face_count == 3,
+        leaf: PatchLeaf::Piece(k),
+    }
+}
+
+/// Cosine of the half-angle of a node's normal cone above which a split by normals is tried
+/// besides the split in space: 45°.
+const NORMAL_SPLIT_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// Half-angle (rad) at which a node's cone counts as much as its size in [`split_cost`]: 30°.
+const COST_ANGLE: f64 = std::f64::consts::PI / 6.0;
+
+/// The cost of splitting `order` at `mid`: for each half, its size (half-diagonal of its
+/// corners' box) times 1 + θ / [`COST_ANGLE`] (θ its cone's half-angle). Both a large ball and
+/// a wide cone make a node pass more pair tests.
+fn split_cost(items: &[Item], order: &[u32], mid: usize) -> f64 {
+    let (left, right) = order.split_at(mid);
+    [left, right]
+        .iter()
+        .map(|half| {
+            let (lo, hi) = half.iter().fold(
+                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                |(lo, hi), &i| {
+                    items[i as usize]
+                        .points()
+                        .iter()
+                        .fold((lo, hi), |(lo, hi), p| (lo.min(*p), hi.max(*p)))
+                },
+            );
+            let size = 0.5 * (hi - lo).length();
+            size * (1.0 + items_cone(items, half).half_angle() / COST_ANGLE)
+        })
+        .sum()
+}
+
+/// The index (0, 1, 2) of the largest component.
+fn widest(v: DVec3) -> usize {
+    if v.x >= v.y && v.x >= v.z {
+        0
+    } else if v.y >= v.z {
+        1
+    } else {
+        2
+    }
+}
+
+/// The unit axis about which the unit vectors `axes` spread least: the eigenvector of the
+/// smallest eigenvalue of Σ a aᵀ (a cylinder's axis for its normals), by power iteration on
+/// tr(M) I - M.
+fn narrowest_axis(axes: impl Iterator<Item = DVec3>) -> DVec3 {
+    let mut m = DMat3::ZERO;
+    for a in axes {
+        m += DMat3::from_cols(a * a.x, a * a.y, a * a.z);
+    }
+    let shifted = DMat3::from_diagonal(DVec3::splat(m.x_axis.x + m.y_axis.y + m.z_axis.z)) - m;
+    let diagonal = DVec3::new(m.x_axis.x, m.y_axis.y, m.z_axis.z);
+    let mut v = DVec3::ZERO;
+    v[widest(-diagonal)] = 1.0;
+    v += DVec3::splat(0.1);
+    for _ in 0..40 {
+        match (shifted * v).try_normalize() {
+            Some(next) => v = next,
+            None => break,
+        }
+    }
+    v.normalize_or_zero()
+}
+
+/// A cap containing every item's cone: about the normalised mean of their axes, with half-angle
+/// the largest angle from it to an axis plus the largest item half-angle (one `acos` per node).
+fn items_cone(items: &[Item], order: &[u32]) -> NormalCone {
+    let mut sum = DVec3::ZERO;
+    let mut widest_item = 0.0_f64;
+    for &i in order.iter() {
+        let cone = &items[i as usize].cone;
+        if cone.is_all() {
+            return NormalCone::ALL;
+        }
+        sum += cone.axis;
+        widest_item = widest_item.max(cone.half_angle());
+    }
+    let Some(axis) = sum.try_normalize() else {
+        return NormalCone::ALL;
+    };
+    let least = order
+        .iter()
+        .map(|&i| axis.dot(items[i as usize].cone.axis))
+        .fold(1.0_f64, f64::min);
+    NormalCone::new(axis, least.clamp(-1.0, 1.0).acos() + widest_item)
+}
+
+/// Builds the subtree over `order` (item indices) into `nodes` (depth-first) and returns its
+/// root's index (see `split_cost` for the split).
+fn build_node(items: &[Item], order: &mut [u32], nodes: &mut Vec<PatchNode>) -> u32 {
+    let index = nodes.len() as u32;
+    nodes.push(PatchNode {
+        centre: DVec3::ZERO,
+        radius: 0.0,
+        cone: NormalCone::ALL,
+        band: NormalBand::ALL,
+        slab: [0.0; 2],
+        box_offset: DVec3::ZERO,
+        half_extents: DVec3::ZERO,
+        curvature: CurvatureTensor::ZERO,
+        curvature_spread: f64::INFINITY,
+        smooth: false,
+        right: u32::MAX,
+        leaf: PatchLeaf::Inner,
+        representative: u32::MAX,
+        anchor: DVec3::ZERO,
+        anchor_normal: DVec3::Z,
+    });
+    let cone = items_cone(items, order);
+    let (smooth, leaf) = if let [single] = order {
+        let item = &items[*single as usize];
+        (item.smooth, item.leaf)
+    } else {
+        // Two candidate splits at a median: in space (centroids along their widest axis) and
+        // in normals (the component of the items' cone axes that varies most); the one whose
+        // children are cheaper by [`split_cost`] wins, so that nodes wrapping around a thin
+        // cylinder or cone are cut into strips with narrow cones.
+        let mid = order.len() / 2;
+        let spatial = |item: &Item, axis: usize| item.centroid()[axis];
+        let normal = |item: &Item, axis: usize| item.cone.axis[axis];
+        let (lo, hi) = order.iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &i| {
+                let c = items[i as usize].centroid();
+                (lo.min(c), hi.max(c))
+            },
+        );
+        let space_axis = widest(hi - lo);
+        let (lo, hi) = order.iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &i| {
+                let n = items[i as usize].cone.axis;
+                (lo.min(n), hi.max(n))
+            },
+        );
+        let normal_axis = widest(hi - lo);
+        if cone.cos < NORMAL_SPLIT_COS {
+            let mut trial = order.to_vec();
+            trial.select_nth_unstable_by(mid, |&a, &b| {
+                normal(&items[a as usize], normal_axis)
+                    .total_cmp(&normal(&items[b as usize], normal_axis))
+            });
+            let normal_cost = split_cost(items, &trial, mid);
+            order.select_nth_unstable_by(mid, |&a, &b| {
+                spatial(&items[a as usize], space_axis)
+                    .total_cmp(&spatial(&items[b as usize], space_axis))
+            });
+            if normal_cost < split_cost(items, order, mid) {
+                order.copy_from_slice(&trial);
+            }
+        } else {
+            order.select_nth_unstable_by(mid, |&a, &b| {
+                spatial(&items[a as usize], space_axis)
+                    .total_cmp(&spatial(&items[b as usize], space_axis))
+            });
+        }
+        let (left, right) = order.split_at_mut(mid);
+        let first = build_node(items, left, nodes);
+        let second = build_node(items, right, nodes);
+        let (l, r) = (nodes[first as usize], nodes[second as usize]);
+        nodes[index as usize].right = second;
+        (l.smooth && r.smooth, PatchLeaf::Inner)
+    };
+    let points = || {
+        order
+            .iter()
+            .flat_map(|&i| items[i as usize].points().iter())
+    };
+    let (lo, hi) = points().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let centre = 0.5 * (lo + hi);
+    // Each item's points grown by the item's own deviation from its exact surface.
+    let grown = || {
+        order.iter().flat_map(|&i| {
+            let item = &items[i as usize];
+            item.points().iter().map(move |p| (*p, item.deviation))
+        })
+    };
+    let reach = grown()
+        .map(|(p, e)| p.distance(centre) + e)
+        .fold(0.0, f64::max);
+    let (s_lo, s_hi) = grown().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (p, e)| {
+        let s = cone.axis.dot(p - centre);
+        (a.min(s - e), b.max(s + e))
+    });
+    let (box_lo, box_hi) = grown().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), (p, e)| (lo.min(p - e), hi.max(p + e)),
+    );
+    let (curvature, curvature_spread) = if smooth {
+        let samples = || {
+            order.iter().flat_map(|&i| {
+                let item = &items[i as usize];
+                item.tensors[..item.count]
+                    .iter()
+                    .map(|t| t.restricted(cone.axis))
+            })
+        };
+        let count = order
+            .iter()
+            .map(|&i| items[i as usize].count)
+            .sum::<usize>();
+        let mean = samples()
+            .fold(CurvatureTensor::ZERO, |acc, t| acc.plus(&t))
+            .scaled(1.0 / count.max(1) as f64);
+        let spread = samples().map(|t| t.distance(&mean)).fold(0.0, f64::max);
+        (mean, spread)
+    } else {
+        (CurvatureTensor::ZERO, f64::INFINITY)
+    };
+    let representative = order
+        .iter()
+        .filter(|&&i| matches!(items[i as usize].leaf, PatchLeaf::Piece(_)))
+        .min_by(|&&a, &&b| {
+            let da = items[a as usize].centroid().distance_squared(centre);
+            let db = items[b as usize].centroid().distance_squared(centre);
+            da.total_cmp(&db)
+        })
+        .and_then(|&i| match items[i as usize].leaf {
+            PatchLeaf::Piece(k) => Some(k),
+            _ => None,
+        })
+        .unwrap_or(u32::MAX);
+    // A rounding allowance on top of the deviations, far below any tolerance (1e-12 of the
+    // coordinates' magnitude).
+    let slack = 1e-12 * (centre.abs().max_element() + reach);
+    let node = &mut nodes[index as usize];
+    node.centre = centre;
+    node.radius = reach + slack;
+    node.cone = cone;
+    node.band = if cone.cos < NORMAL_SPLIT_COS {
+        NormalBand::around(
+            narrowest_axis(order.iter().map(|&i| items[i as usize].cone.axis)),
+            order.iter().map(|&i| items[i as usize].cone),
+        )
+    } else {
+        NormalBand::ALL
+    };
+    node.slab = [s_lo - slack, s_hi + slack];
+    node.box_offset = 0.5 * (box_lo + box_hi) - centre;
+    node.half_extents = 0.5 * (box_hi - box_lo) + slack;
+    node.curvature = curvature;
+    node.curvature_spread = curvature_spread;
+    node.smooth = smooth && curvature_spread.is_finite();
+    node.leaf = leaf;
+    node.representative = representative;
+    index
+}
+
+/// The curvature of a surface at a point as a symmetric 3x3 tensor C in the object frame:
+/// for a unit tangent vector t, tᵀ C t is the normal curvature in direction t (library sign:
+/// positive where convex seen from outside), and C n = 0 for the normal n. With
+/// J = [S_u S_v], the first fundamental form I = JᵀJ and the second II (L = S_uu · n, ...),
+/// C = J I⁻¹ (-II) I⁻¹ Jᵀ: for t = J a, tᵀ C t = -aᵀ II a and |t|² = aᵀ I a.
+///
+/// Stored as its six distinct entries (xx, yy, zz, xy, xz, yz).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CurvatureTensor(pub [f64; 6]);
+
+impl CurvatureTensor {
+    /// The zero tensor (a plane).
+    pub const ZERO: Self = Self([0.0; 6]);
+
+    /// The tensor at `point` with unit outward normal `n`; `None` where the first fundamental
+    /// form is singular or a value is not finite.
+    #[must_use]
+    pub fn at(point: &SurfacePoint, n: DVec3) -> Option<Self> {
+        let (du, dv) = (point.du, point.dv);
+        let first = DMat2::from_cols(
+            DVec2::new(du.dot(du), du.dot(dv)),
+            DVec2::new(du.dot(dv), dv.dot(dv)),
+        );
+        let det = first.determinant();
+        if det <= f64::EPSILON * du.length_squared() * dv.length_squared() || det.is_nan() {
+            return None;
+        }
+        let second = DMat2::from_cols(
+            DVec2::new(point.duu.dot(n), point.duv.dot(n)),
+            DVec2::new(point.duv.dot(n), point.dvv.dot(n)),
+        );
+        let inverse = first.inverse();
+        let middle = inverse * (-second) * inverse;
+        // C = J M Jᵀ with J's columns du, dv.
+        let c = |x: DVec3, y: DVec3| {
+            let (ax, ay) = (
+                DVec2::new(du.dot(x), dv.dot(x)),
+                DVec2::new(du.dot(y), dv.dot(y)),
+            );
+            ax.dot(middle * ay)
+        };
+        let (ex, ey, ez) = (DVec3::X, DVec3::Y, DVec3::Z);
+        let t = Self([
+            c(ex, ex),
+            c(ey, ey),
+            c(ez, ez),
+            c(ex, ey),
+            c(ex, ez),
+            c(ey, ez),
+        ]);
+        t.0.iter().all(|x| x.is_finite()).then_some(t)
+    }
+
+    /// The tensor restricted to the plane normal to the unit vector `axis`: P C P with
+    /// P = I - axis axisᵀ.
+    #[must_use]
+    pub fn restricted(&self, axis: DVec3) -> Self {
+        let q = [DVec3::X, DVec3::Y, DVec3::Z]
+            .map(|e| e - axis * axis.x.mul_add(e.x, axis.y.mul_add(e.y, axis.z * e.z)));
+        Self([
+            self.form(q[0], q[0]),
+            self.form(q[1], q[1]),
+            self.form(q[2], q[2]),
+            self.form(q[0], q[1]),
+            self.form(q[0], q[2]),
+            self.form(q[1], q[2]),
+        ])
+    }
+
+    /// The sum of two tensors.
+    #[must_use]
+    pub fn plus(&self, other: &Self) -> Self {
+        Self(std::array::from_fn(|i| self.0[i] + other.0[i]))
+    }
+
+    /// The tensor times `s`.
+    #[must_use]
+    pub fn scaled(&self, s: f64) -> Self {
+        Self(self.0.map(|x| x * s))
+    }
+
+    /// Frobenius distance to another tensor (an upper bound of the spectral norm of the
+    /// difference).
+    #[must_use]
+    pub fn distance(&self, other: &Self) -> f64 {
+        let d: [f64; 6] = std::array::from_fn(|i| self.0[i] - other.0[i]);
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 2.0 * (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]))
+            .sqrt()
+    }
+
+    /// Frobenius norm.
+    #[must_use]
+    pub fn norm(&self) -> f64 {
+        self.distance(&Self::ZERO)
+    }
+
+    /// tᵀ C s.
+    #[must_use]
+    pub fn form(&self, t: DVec3, s: DVec3) -> f64 {
+        let [xx, yy, zz, xy, xz, yz] = self.0;
+        let cs = DVec3::new(
+            xx * s.x + xy * s.y + xz * s.z,
+            xy * s.x + yy * s.y + yz * s.z,
+            xz * s.x + yz * s.y + zz * s.z,
+        );
+        t.dot(cs)
+    }
+}

@@ -1,0 +1,219 @@
+//! Closest points between triangles, segments and points, with barycentric coordinates so that
+//! a closest point can be located on the exact surface ([`geom_param::ComponentMesh::locate`]).
+
+use glam::DVec3;
+
+/// A point of a triangle with its barycentric coordinates (corner order of the triangle).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrianglePoint {
+    /// The point.
+    pub point: DVec3,
+    /// Its barycentric coordinates, non-negative, summing to 1.
+    pub barycentric: [f64; 3],
+}
+
+/// The closest points of two triangles and their distance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrianglePair {
+    /// On the first triangle.
+    pub a: TrianglePoint,
+    /// On the second triangle.
+    pub b: TrianglePoint,
+    /// |a - b|.
+    pub distance: f64,
+}
+
+/// The point of triangle `t` nearest to `p` (Ericson, *Real-Time Collision Detection*, 5.1.5,
+/// by Voronoi regions), with its barycentric coordinates. A degenerate triangle gives a point
+/// of its longest edge or a corner.
+#[must_use]
+pub fn closest_on_triangle(p: DVec3, t: &[DVec3; 3]) -> TrianglePoint {
+    let [a, b, c] = *t;
+    let corner = |i: usize| {
+        let mut barycentric = [0.0; 3];
+        barycentric[i] = 1.0;
+        TrianglePoint {
+            point: t[i],
+            barycentric,
+        }
+    };
+    let on_edge = |i: usize, j: usize, s: f64| {
+        let mut barycentric = [0.0; 3];
+        barycentric[i] = 1.0 - s;
+        barycentric[j] = s;
+        TrianglePoint {
+            point: t[i] + (t[j] - t[i]) * s,
+            barycentric,
+        }
+    };
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return corner(0);
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return corner(1);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return on_edge(0, 1, ratio(d1, d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return corner(2);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return on_edge(0, 2, ratio(d2, d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return on_edge(1, 2, ratio(d4 - d3, (d4 - d3) + (d5 - d6)));
+    }
+    let sum = va + vb + vc;
+    if sum <= 0.0 || !sum.is_finite() {
+        // Degenerate (collinear) triangle: the best of its three edges.
+        return [(0, 1), (0, 2), (1, 2)]
+            .into_iter()
+            .map(|(i, j)| on_edge(i, j, segment_parameter(p, t[i], t[j])))
+            .min_by(|x, y| {
+                x.point
+                    .distance_squared(p)
+                    .total_cmp(&y.point.distance_squared(p))
+            })
+            .unwrap_or_else(|| corner(0));
+    }
+    let (v, w) = (vb / sum, vc / sum);
+    TrianglePoint {
+        point: a + ab * v + ac * w,
+        barycentric: [1.0 - v - w, v, w],
+    }
+}
+
+/// `num / den` clamped to [0, 1]; 0 for a zero or non-finite quotient.
+fn ratio(num: f64, den: f64) -> f64 {
+    let r = num / den;
+    if r.is_finite() {
+        r.clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
+/// The parameter s in [0, 1] of the point of segment `a`..`b` nearest to `p`.
+fn segment_parameter(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let d = b - a;
+    ratio((p - a).dot(d), d.length_squared())
+}
+
+/// Parameters (s, t) in [0, 1]² of the closest points of segments `p1`..`q1` and `p2`..`q2`
+/// (Ericson 5.1.9; degenerate segments handled as points).
+fn segment_parameters(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (f64, f64) {
+    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
+    let (a, e, f) = (d1.length_squared(), d2.length_squared(), d2.dot(r));
+    let tiny = f64::EPSILON * (a + e).max(f64::MIN_POSITIVE);
+    if a <= tiny && e <= tiny {
+        return (0.0, 0.0);
+    }
+    if a <= tiny {
+        return (0.0, ratio(f, e));
+    }
+    let c = d1.dot(r);
+    if e <= tiny {
+        return (ratio(-c, a), 0.0);
+    }
+    let b = d1.dot(d2);
+    let denom = a * e - b * b;
+    let mut s = if denom > tiny * (a * e) {
+        ratio(b * f - c * e, denom)
+    } else {
+        0.0
+    };
+    let mut t = (b * s + f) / e;
+    if t < 0.0 {
+        t = 0.0;
+        s = ratio(-c, a);
+    } else if t > 1.0 {
+        t = 1.0;
+        s = ratio(b - c, a);
+    }
+    (s, t.clamp(0.0, 1.0))
+}
+
+/// The closest points of two triangles (Ericson 5.1.10's case analysis: the six corners against
+/// the other triangle and the nine edge pairs). Exact for disjoint triangles up to rounding;
+/// for intersecting triangles the distance found may be positive (an edge piercing the other
+/// triangle's interior is not among the cases), so callers test intersection separately.
+#[must_use]
+pub fn closest_between_triangles(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> TrianglePair {
+    let mut best = {
+        let b = closest_on_triangle(t1[0], t2);
+        let mut a = [0.0; 3];
+        a[0] = 1.0;
+        TrianglePair {
+            a: TrianglePoint {
+                point: t1[0],
+                barycentric: a,
+            },
+            distance: t1[0].distance(b.point),
+            b,
+        }
+    };
+    let mut consider = |pair: TrianglePair| {
+        if pair.distance < best.distance {
+            best = pair;
+        }
+    };
+    for i in 0..3 {
+        let mut unit = [0.0; 3];
+        unit[i] = 1.0;
+        if i > 0 {
+            let b = closest_on_triangle(t1[i], t2);
+            consider(TrianglePair {
+                a: TrianglePoint {
+                    point: t1[i],
+                    barycentric: unit,
+                },
+                distance: t1[i].distance(b.point),
+                b,
+            });
+        }
+        let a = closest_on_triangle(t2[i], t1);
+        consider(TrianglePair {
+            distance: t2[i].distance(a.point),
+            a,
+            b: TrianglePoint {
+                point: t2[i],
+                barycentric: unit,
+            },
+        });
+    }
+    const EDGES: [(usize, usize); 3] = [(0, 1), (1, 2), (2, 0)];
+    for (i1, j1) in EDGES {
+        for (i2, j2) in EDGES {
+            let (s, t) = segment_parameters(t1[i1], t1[j1], t2[i2], t2[j2]);
+            let (mut ba, mut bb) = ([0.0; 3], [0.0; 3]);
+            ba[i1] = 1.0 - s;
+            ba[j1] = s;
+            bb[i2] = 1.0 - t;
+            bb[j2] = t;
+            let pa = t1[i1] + (t1[j1] - t1[i1]) * s;
+            let pb = t2[i2] + (t2[j2] - t2[i2]) * t;
+            consider(TrianglePair {
+                a: TrianglePoint {
+                    point: pa,
+                    barycentric: ba,
+                },
+                b: TrianglePoint {
+                    point: pb,
+                    barycentric: bb,
+                },
+                distance: pa.distance(pb),
+            });
+        }
+    }
+    best
+}
