@@ -133,7 +133,8 @@ pub fn support_pair(r: f64, [lo, hi]: [f64; 2], alpha: f64) -> (f64, f64) {
 
 /// The largest values (mm) of `u · (x - centre)` and of `-u · (x - centre)` over the node's
 /// volume, for a unit `u` in the node's own frame: over a piece, its corners grown by its
-/// deviation; over an inner node, the ball-and-slab bound ([`support_pair`]).
+/// deviation; over an inner node, the smaller of the ball-and-slab bound ([`support_pair`]) and
+/// the axis-aligned box's.
 #[must_use]
 pub fn extents(tree: &PatchTree, node: &PatchNode, u: DVec3) -> (f64, f64) {
     if let PatchLeaf::Piece(k) = node.leaf {
@@ -146,7 +147,9 @@ pub fn extents(tree: &PatchTree, node: &PatchNode, u: DVec3) -> (f64, f64) {
             );
         }
     }
-    support_pair(node.radius, node.slab, u.dot(node.cone.axis))
+    let (up, down) = support_pair(node.radius, node.slab, u.dot(node.cone.axis));
+    let (offset, half) = (node.box_offset.dot(u), node.half_extents.dot(u.abs()));
+    (up.min(offset + half), down.min(half - offset))
 }
 
 /// The larger of the gaps between the volumes of node `a` of `tree_a` and node `b` of `tree_b`

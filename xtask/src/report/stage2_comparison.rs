@@ -1,8 +1,8 @@
 //! Stage 2's two triangle paths side by side, measured in one run on the same poses: the
 //! paper's proxy-mesh regions (`ConcavePath::ProxyRegions`, the path before issue 15) and the
 //! normal-cone patch hierarchy (`ConcavePath::NormalCones`, the default), on every fixture scene
-//! and the report's concave scenes. The three timings of a row are interleaved query by query,
-//! so that the machine's load falls on all of them alike.
+//! and the report's concave scenes. The four timings of a row (each path warm and cold) are
+//! interleaved query by query, so that the machine's load falls on all of them alike.
 
 use super::timing::median;
 use bvh_hybrid::HybridBvh;
@@ -28,11 +28,12 @@ pub struct ComparisonRow {
     /// Whether both paths report the same contacts (distances within 1e-9 mm and points within
     /// 1e-6 mm, in any order).
     pub same_contacts: bool,
-    /// Whole-query medians (µs): proxy path, normal cones with a warm scratch (the previous
-    /// query's front carried), normal cones with a fresh scratch per query.
-    pub whole_us: [f64; 3],
+    /// Whole-query medians (µs): proxy path and normal cones with a warm scratch (GJK warm
+    /// starts; for the cones the previous query's front carried), then both with a fresh
+    /// scratch per query.
+    pub whole_us: [f64; 4],
     /// Stage 2 medians (µs), likewise.
-    pub mesh_us: [f64; 3],
+    pub mesh_us: [f64; 4],
 }
 
 /// The pipeline with Stage 2 on `path`.
@@ -204,8 +205,8 @@ fn measure_case(case: &Case, repetitions: usize) -> Result<ComparisonRow, String
     let (proxy_report, _) = query(&proxy, &mut proxy_scratch)?;
     let (cones_report, _) = query(&cones, &mut warm_scratch)?;
     let n = repetitions.max(1);
-    let mut whole: [Vec<f64>; 3] = Default::default();
-    let mut mesh: [Vec<f64>; 3] = Default::default();
+    let mut whole: [Vec<f64>; 4] = Default::default();
+    let mut mesh: [Vec<f64>; 4] = Default::default();
     for _ in 0..n {
         let (r, t) = query(&proxy, &mut proxy_scratch)?;
         whole[0].push(t);
@@ -213,9 +214,12 @@ fn measure_case(case: &Case, repetitions: usize) -> Result<ComparisonRow, String
         let (r, t) = query(&cones, &mut warm_scratch)?;
         whole[1].push(t);
         mesh[1].push(r.stats.mesh_us);
-        let (r, t) = query(&cones, &mut QueryScratch::default())?;
+        let (r, t) = query(&proxy, &mut QueryScratch::default())?;
         whole[2].push(t);
         mesh[2].push(r.stats.mesh_us);
+        let (r, t) = query(&cones, &mut QueryScratch::default())?;
+        whole[3].push(t);
+        mesh[3].push(r.stats.mesh_us);
     }
     Ok(ComparisonRow {
         scene: case.name.clone(),
