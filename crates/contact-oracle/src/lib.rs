@@ -29,7 +29,10 @@
 //!    an edge or a vertex are first pinned by the descent of step 4 (from either side).
 //! 4. Penetration: the deepest inside sample of each overlap region, and every crossing the
 //!    minimum search met, start a descent of A's signed distance to B; its minimum is the
-//!    witness, polished by plain Newton on ∇f = 0; from both sides (`penetration`). The
+//!    witness, polished by plain Newton on ∇f = 0; from both sides (`penetration`). A witness
+//!    must be a pair of mutually nearest boundary points: one with a sample of either solid
+//!    nearer to the other's point than their distance is a depth through the material and is
+//!    dropped, as minima are below. The
 //!    descent moves over trims, edges and vertices as the polish does (not across the sides
 //!    of a face without trim onto an edge shared with another such face), so a witness may lie
 //!    inside a trimmed face, on an edge or at a corner.

@@ -4,6 +4,7 @@
 use crate::cross_check::compare;
 use crate::error::OracleError;
 use crate::found::{contact, merge, through_material};
+use crate::held::Held;
 use crate::kdtree::KdTree;
 use crate::local_minima::{self, NEIGHBOURHOOD, Outcome};
 use crate::options::OracleOptions;
@@ -12,7 +13,7 @@ use crate::polish::{self, Limits, Pair, Polished};
 use crate::posed::PosedSolid;
 use crate::report::{OracleContact, OracleReport};
 use crate::sampling::{self, Sample};
-use geom_param::{DPose3, Solid};
+use geom_param::{DPose3, FeatureLocation, Solid};
 
 /// Most samples of one solid in one run (a `Sample` is 72 bytes: at most ~72 MB per solid).
 pub const SAMPLE_BUDGET: usize = 1_000_000;
@@ -147,7 +148,20 @@ fn run(
         let outcome = local_minima::polish(a, b, start, spacing, &limits);
         match outcome {
             Outcome::Minimum(p) => {
-                let na = a.sign_normal(p.pair.fa, p.pair.a, p.pair.held_a);
+                // The sign from A's outward side at the feature the point is on: a point held
+                // on a face's side (an edge of a face without trim) has the edge's side, which
+                // the face's own normal there does not give.
+                let snap = 10.0 * options.tolerance;
+                let held = match a.location(p.pair.fa, p.pair.a, p.pair.held_a, snap) {
+                    FeatureLocation::Face { .. } => Held::Face,
+                    FeatureLocation::Edge { id, t } => Held::Edge {
+                        edge: id,
+                        t,
+                        use_index: 0,
+                    },
+                    FeatureLocation::Vertex { id } => Held::Vertex(id),
+                };
+                let na = a.sign_normal(p.pair.fa, p.pair.a, held);
                 let negative = na.is_some_and(|n| (p.eval.pb.point - p.eval.pa.point).dot(n) < 0.0);
                 if through_material(&p.eval, &ta, &tb, options.tolerance) {
                     continue;
@@ -190,6 +204,23 @@ fn run(
             let pair = if swapped { swap(&w.pair) } else { w.pair };
             let e = polish::evaluate(a, b, &pair);
             let residual = polish::residual(&e, pair.dims(), [false; 4]);
+            // A witness is a pair of mutually nearest boundary points: one measured past a
+            // nearer part of either surface is a depth through the material, not a witness.
+            if through_material(&e, &ta, &tb, options.tolerance) {
+                continue;
+            }
+            // And a witness overlaps: A's point behind B's outward side and B's behind A's
+            // (S_a − S_b against both sides' normals; a pair on the outer sides is a separated
+            // pair that the polish reached from the descent, not a penetration).
+            let behind = |na: Option<glam::DVec3>, nb: Option<glam::DVec3>| {
+                na.is_none_or(|n| e.r.dot(n) >= 0.0) && nb.is_none_or(|n| e.r.dot(n) <= 0.0)
+            };
+            if !behind(
+                a.sign_normal(pair.fa, pair.a, pair.held_a),
+                b.sign_normal(pair.fb, pair.b, pair.held_b),
+            ) {
+                continue;
+            }
             let w = Polished {
                 pair,
                 eval: e,

@@ -10,11 +10,16 @@
 //!   tangent plane (an apex): the circular cone about the mean of the faces' normals sampled
 //!   around the vertex (16 values of the periodic parameter, 1e-7 of the parameter span inside
 //!   the collapsed side), with half-angle the largest angle of a sample from that mean.
+//! - A corner where edges end (a vertex of trimmed faces): the convex cone spanned by the
+//!   outward normals of the faces meeting there, each evaluated at the vertex (through the
+//!   p-curve of an edge ending there). For a convex corner that is its normal cone; for a
+//!   corner with a valley edge it is a superset (the check is then lenient there, as the arc of
+//!   a valley edge is).
 
 use geom_param::{Boundary, DVec3, FaceId, FeatureLocation, ParamSide, Solid, VertexId};
 
 /// Outward normal directions at a feature location (object frame).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum NormalCone {
     /// One direction.
     Single(DVec3),
@@ -27,6 +32,8 @@ pub enum NormalCone {
         /// Half-angle (rad).
         half_angle: f64,
     },
+    /// Non-negative combinations of these unit directions (the faces' normals at a corner).
+    Spanned(Vec<DVec3>),
 }
 
 /// The angle between two vectors (rad), accurate for small and near-π angles.
@@ -46,6 +53,9 @@ impl NormalCone {
                 axis: rotation * axis,
                 half_angle,
             },
+            Self::Spanned(normals) => {
+                Self::Spanned(normals.into_iter().map(|n| rotation * n).collect())
+            }
         }
     }
 
@@ -56,7 +66,67 @@ impl NormalCone {
             Self::Single(m) => angle(n, m),
             Self::Arc(n1, n2) => (angle(n, n1) + angle(n, n2) - angle(n1, n2)).max(0.0),
             Self::Circular { axis, half_angle } => (angle(n, axis) - half_angle).max(0.0),
+            Self::Spanned(ref normals) => spanned_excess(normals, n),
         }
+    }
+}
+
+/// The angle (rad) from the unit direction `n` to the convex cone spanned by `normals`: 0
+/// inside, else the angle to its projection onto the cone (π/2 when that projection is the
+/// apex).
+///
+/// The projection of a point onto a finitely generated cone in R³ lies in the relative
+/// interior of a face spanned by at most three independent generators (Carathéodory), so it
+/// is the nearest of the candidates: a triple that writes `n` with non-negative coefficients
+/// (then `n` is inside), the projections onto the planes of pairs with non-negative
+/// coefficients, and the projections onto single rays.
+fn spanned_excess(normals: &[DVec3], n: DVec3) -> f64 {
+    const INDEPENDENT: f64 = 1e-12;
+    let k = normals.len();
+    for i in 0..k {
+        for j in i + 1..k {
+            for l in j + 1..k {
+                let (a, b, c) = (normals[i], normals[j], normals[l]);
+                let det = a.dot(b.cross(c));
+                if det.abs() <= INDEPENDENT {
+                    continue;
+                }
+                // Cramer's rule for n = x a + y b + z c.
+                let x = n.dot(b.cross(c)) / det;
+                let y = a.dot(n.cross(c)) / det;
+                let z = a.dot(b.cross(n)) / det;
+                if x >= 0.0 && y >= 0.0 && z >= 0.0 {
+                    return 0.0;
+                }
+            }
+        }
+    }
+    let mut best: Option<DVec3> = None;
+    let mut consider = |p: DVec3| {
+        if best.is_none_or(|q| n.distance_squared(p) < n.distance_squared(q)) {
+            best = Some(p);
+        }
+    };
+    for (i, &a) in normals.iter().enumerate() {
+        consider(a * n.dot(a).max(0.0));
+        for &b in &normals[i + 1..] {
+            // n's projection onto span(a, b): the 2 x 2 normal equations.
+            let (aa, ab, bb) = (a.dot(a), a.dot(b), b.dot(b));
+            let det = aa * bb - ab * ab;
+            if det <= INDEPENDENT {
+                continue;
+            }
+            let (na, nb) = (n.dot(a), n.dot(b));
+            let x = (na * bb - nb * ab) / det;
+            let y = (nb * aa - na * ab) / det;
+            if x >= 0.0 && y >= 0.0 {
+                consider(a * x + b * y);
+            }
+        }
+    }
+    match best {
+        Some(p) if p.length_squared() > 0.0 => angle(n, p),
+        _ => std::f64::consts::FRAC_PI_2,
     }
 }
 
@@ -121,7 +191,37 @@ fn vertex_cone(solid: &Solid, id: VertexId) -> Option<NormalCone> {
             }
         }
     }
-    circular(&normals)
+    if !normals.is_empty() {
+        return circular(&normals);
+    }
+    corner_cone(solid, id)
+}
+
+/// The cone spanned by the outward normals, at the vertex, of the faces of the edges ending at
+/// corner `id`; `None` when no edge ends there.
+fn corner_cone(solid: &Solid, id: VertexId) -> Option<NormalCone> {
+    /// Normals closer than this (rad) are one generator.
+    const SAME: f64 = 1e-12;
+    let mut normals: Vec<DVec3> = Vec::new();
+    for &e in &solid.vertex(id).edges {
+        let edge = solid.edge(e);
+        let Some(ends) = edge.ends else { continue };
+        let domain = edge.curve.domain();
+        for (end, t) in [(ends[0], domain.min), (ends[1], domain.max)] {
+            if end != id {
+                continue;
+            }
+            for u in &edge.uses {
+                let [fu, fv] = solid.use_params(u, t);
+                if let Some(n) = solid.face(u.face).surface.normal(fu, fv)
+                    && normals.iter().all(|m| angle(*m, n) > SAME)
+                {
+                    normals.push(n);
+                }
+            }
+        }
+    }
+    (!normals.is_empty()).then_some(NormalCone::Spanned(normals))
 }
 
 /// The cone of outward normals at `location` (object frame), or `None` where none can be
@@ -185,5 +285,45 @@ pub fn local_curvature(solid: &Solid, location: &FeatureLocation) -> f64 {
                 .fold(0.0, f64::max)
         }
         FeatureLocation::Vertex { .. } => 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
+
+    /// The cone of a box corner: the positive octant's three axes.
+    fn octant() -> NormalCone {
+        NormalCone::Spanned(vec![DVec3::X, DVec3::Y, DVec3::Z])
+    }
+
+    #[test]
+    fn a_spanned_cone_holds_the_combinations_of_its_normals() {
+        assert_eq!(octant().excess(DVec3::ONE.normalize()), 0.0);
+        assert_eq!(octant().excess(DVec3::new(1.0, 2.0, 0.5).normalize()), 0.0);
+    }
+
+    #[test]
+    fn outside_a_spanned_cone_the_excess_is_the_angle_to_its_projection() {
+        // Onto a face of the octant: (1, -1, 0) projects to (1, 0, 0).
+        let n = DVec3::new(1.0, -1.0, 0.0).normalize();
+        assert!((octant().excess(n) - FRAC_PI_4).abs() < 1e-15);
+        // Onto a side plane: (1, 1, -1) projects to (1, 1, 0), at atan(1 / sqrt 2).
+        let n = DVec3::new(1.0, 1.0, -1.0).normalize();
+        assert!((octant().excess(n) - (1.0 / 2f64.sqrt()).atan()).abs() < 1e-15);
+        // Opposite the octant: the projection is the apex.
+        assert_eq!(octant().excess(-DVec3::ONE.normalize()), FRAC_PI_2);
+    }
+
+    #[test]
+    fn a_two_normal_cone_is_the_quarter_plane_between_them() {
+        let wedge = NormalCone::Spanned(vec![DVec3::X, DVec3::Y]);
+        // In the plane, outside: the angle to the nearer normal.
+        let n = DVec3::new(-1.0, 2.0, 0.0).normalize();
+        assert!((wedge.excess(n) - 0.5f64.atan()).abs() < 1e-15);
+        // Off the plane above the arc: the angle to the plane.
+        let n = DVec3::new(1.0, 1.0, 1.0).normalize();
+        assert!((wedge.excess(n) - (1.0 / 2f64.sqrt()).atan()).abs() < 1e-15);
     }
 }
