@@ -1,5 +1,5 @@
-//! The CI-sized soak: 7 random near-contact poses for each of the 36 ordered pairs of the paper
-//! objects (252 poses), with every oracle-free property and the comparison with
+//! The CI-sized soak: 14 random near-contact poses for each of the 36 ordered pairs of the paper
+//! objects (504 poses), with every oracle-free property and the comparison with
 //! `contact-oracle` of `cargo xtask soak`. The full run is `cargo xtask soak 10000`.
 
 use std::sync::OnceLock;
@@ -7,7 +7,7 @@ use xtask::soak::properties::Property;
 use xtask::soak::run::{SoakConfig, SoakSummary, run_soak};
 use xtask::soak::table::{render, totals};
 
-const POSES: usize = 7 * 36;
+const POSES: usize = 14 * 36;
 const SEED: u64 = 2026;
 
 /// The run, shared by the tests of this file (run once).
@@ -19,8 +19,9 @@ fn summary() -> &'static SoakSummary {
                 poses: POSES,
                 seed: SEED,
                 pairs: Vec::new(),
-                // FIXME(general solids): the CI soak covers the six paper objects; the general
-                // fixture objects run with `cargo xtask soak N --general` (docs/ROBUSTNESS.md).
+                // FIXME(issue 18): the CI soak covers the six paper objects; the general fixture
+                // objects are not at zero failures yet (`cargo xtask soak 600 --general --seed
+                // 2026`: 6 missed, 1 false, 2 state, 16 property failures; docs/ROBUSTNESS.md).
                 general: false,
             },
             |_, _| {},

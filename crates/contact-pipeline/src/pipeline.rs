@@ -259,6 +259,8 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let start = Instant::now();
         report.stats.refine_ran = true;
         let scale = a.model.scale.max(b.model.scale);
+        // Some seed's refinement ended below delta1 without converging (see the end).
+        let mut unconverged_below = false;
         for (i, seed) in scratch.seeds.iter().enumerate() {
             let refined = self.refiner.refine(
                 &a.model.solid,
@@ -268,6 +270,8 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 &mut scratch.refine,
             );
             report.stats.refined += 1;
+            unconverged_below |=
+                refined.distance < options.delta1 && !refined.diagnostics.converged;
             if self.take(&refined, pose_a, scale, report) {
                 break;
             }
@@ -295,6 +299,16 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             }
         }
         report.stats.refine_us = micros(start);
+        if report.state != PairState::Penetration
+            && report.contacts.is_empty()
+            && mesh_overlaps > 0
+            && unconverged_below
+        {
+            // The meshes intersect and no seed converged to an answer, but one ended on
+            // overlapping surfaces: the pair is taken as penetrating (an unconverged pair
+            // decides nothing where another seed converged; here nothing did).
+            report.state = PairState::Penetration;
+        }
         if report.state != PairState::Penetration {
             // The mesh overlaps were within the chordal errors: no penetration after all.
             report.penetration_witnesses.clear();
@@ -308,7 +322,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
 }
 
 impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
-    /// Enters one refined seed into `report`: below delta1 a penetration witness (merged with
+    /// Enters one refined seed into `report`: below delta1 and converged a penetration witness (merged with
     /// an earlier one within the merge tolerance), in the band and a local minimum a contact
     /// (merged likewise), anything else dropped. `scale` is the larger object's size (mm).
     /// Returns true when the query may stop (depth [`QueryDepth::StateOnly`] and the state is
@@ -322,7 +336,10 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     ) -> bool {
         let options = &self.options;
         let state_only = options.depth == QueryDepth::StateOnly;
-        if refined.distance < options.delta1 {
+        if refined.distance < options.delta1 && refined.diagnostics.converged {
+            // Only a converged pair proves the surfaces overlap: one that stopped short (on
+            // the way to an edge pair's witness, say) may be below delta1 where the converged
+            // answer is a contact in the band.
             report.state = PairState::Penetration;
             let witness = *pose_a * (0.5 * (refined.point_a + refined.point_b));
             let tolerance = merge_tolerance(refined, scale);

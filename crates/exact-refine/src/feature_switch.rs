@@ -124,7 +124,8 @@ pub(crate) fn settle_start(body: &Body, loc: Loc) -> Loc {
 
 /// [`settle`] after putting each non-periodic face parameter whose point lies within
 /// `relative` x max(1, |S(u, v)|) mm (along the face, to first order) of its side onto that
-/// side.
+/// side; on a trimmed face, the point onto the nearest boundary edge when that edge's point is
+/// within the same distance.
 pub(crate) fn snap_to_sides(body: &Body, loc: Loc, relative: f64) -> Loc {
     snap_within(body, loc, |at| relative * at.point.length().max(1.0))
 }
@@ -140,11 +141,29 @@ fn snap_within(body: &Body, loc: Loc, reach: impl Fn(&SurfacePoint) -> f64) -> L
     let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, loc) else {
         return settle(body, loc);
     };
-    let surface = &solid.face(id).surface;
+    let face = solid.face(id);
+    let surface = &face.surface;
     let domain = surface.domain();
     let mut w = [wrap(&domain[0], u), wrap(&domain[1], v)];
     let at = surface.eval(w[0], w[1]);
     let reach = reach(&at);
+    if let Some(trim) = &face.trim {
+        // A trimmed face's sides are its trim's edges: the nearest boundary point, if its
+        // point is within reach of the face's.
+        if let Some(near) = trim.nearest(DVec2::new(u, v)) {
+            let edge = trim.loops[near.loop_index].entries[near.index].edge;
+            if solid.eval_edge(edge, near.t).point.distance(at.point) <= reach {
+                return settle(
+                    body,
+                    Some(FeatureLocation::Edge {
+                        id: edge,
+                        t: near.t,
+                    }),
+                );
+            }
+        }
+        return settle(body, loc);
+    }
     for (i, speed) in [at.du.length(), at.dv.length()].into_iter().enumerate() {
         let range = domain[i];
         if range.periodic {
@@ -164,6 +183,55 @@ fn snap_within(body: &Body, loc: Loc, reach: impl Fn(&SurfacePoint) -> f64) -> L
             v: w[1],
         }),
     )
+}
+
+/// A face location moved onto the nearest edge bounding its face: the nearest point of a
+/// trim's boundary, or of the rectangle's non-periodic sides that are edges (nearest in space,
+/// at the same running parameter); settled, so an edge's end becomes its vertex. Edge and
+/// vertex locations, and faces with no bounding edge, are returned unchanged.
+pub(crate) fn onto_nearest_edge(body: &Body, loc: Loc) -> Loc {
+    let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, loc) else {
+        return loc;
+    };
+    let face = solid.face(id);
+    if let Some(trim) = &face.trim {
+        let Some(near) = trim.nearest(DVec2::new(u, v)) else {
+            return loc;
+        };
+        let edge = trim.loops[near.loop_index].entries[near.index].edge;
+        return settle(
+            body,
+            Some(FeatureLocation::Edge {
+                id: edge,
+                t: near.t,
+            }),
+        );
+    }
+    let domain = face.surface.domain();
+    let w = [wrap(&domain[0], u), wrap(&domain[1], v)];
+    let at = face.surface.eval(w[0], w[1]).point;
+    let mut best: Option<(f64, [f64; 2])> = None;
+    for i in 0..2 {
+        let range = domain[i];
+        if range.periodic {
+            continue;
+        }
+        for (bound, at_max) in [(range.min, false), (range.max, true)] {
+            if !matches!(face.boundary(side_of(i, at_max)), Boundary::Edge(_)) {
+                continue;
+            }
+            let mut on_side = w;
+            on_side[i] = bound;
+            let gap = face.surface.eval(on_side[0], on_side[1]).point.distance(at);
+            if best.is_none_or(|(g, _)| gap < g) {
+                best = Some((gap, on_side));
+            }
+        }
+    }
+    match best {
+        Some((_, [u, v])) => settle(body, Some(FeatureLocation::Face { id, u, v })),
+        None => loc,
+    }
 }
 
 /// For a location on an edge, the two adjacent faces' locations a relative 1e-9 of the
