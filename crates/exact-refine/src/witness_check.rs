@@ -217,7 +217,10 @@ mod tests {
     impl NearestBoundary for Shell {
         fn nearest_boundary(&self, p: DVec3) -> Option<BoundaryDistance> {
             let n = p.try_normalize()?;
-            let (di, dout) = ((p.length() - self.inner).abs(), (p.length() - self.outer).abs());
+            let (di, dout) = (
+                (p.length() - self.inner).abs(),
+                (p.length() - self.outer).abs(),
+            );
             let (radius, distance) = if di < dout {
                 (self.inner, di)
             } else {
@@ -323,7 +326,11 @@ mod tests {
             rotation: geom_param::DQuat::IDENTITY,
         };
         let moved = |p: DVec3| p - shell_at;
-        let real = witness(moved(DVec3::new(2.0, 0.0, 0.0)), moved(DVec3::X * 3.0), -1.0);
+        let real = witness(
+            moved(DVec3::new(2.0, 0.0, 0.0)),
+            moved(DVec3::X * 3.0),
+            -1.0,
+        );
         assert_eq!(
             check_witness(&swapped, &real, &shell, &ball),
             WitnessCheck::MutuallyNearest
@@ -331,7 +338,11 @@ mod tests {
         // The shell's outer point (−12, 0, 0) against the ball's near pole (5, 0, 0): the
         // segment runs outside the ball, but crosses the shell's inner sphere at (−10, 0, 0),
         // 15 mm from the ball's point.
-        let through = witness(DVec3::new(-12.0, 0.0, 0.0), DVec3::new(5.0, 0.0, 0.0), -17.0);
+        let through = witness(
+            DVec3::new(-12.0, 0.0, 0.0),
+            DVec3::new(5.0, 0.0, 0.0),
+            -17.0,
+        );
         match check_witness(&swapped, &through, &shell, &ball) {
             WitnessCheck::ThroughMaterial {
                 side: WitnessSide::A,

@@ -54,7 +54,7 @@ pub mod triangle_intersection;
 
 pub use default_phase::{ConcavePath, MeshNarrowphase, MeshNarrowphaseOptions, MeshScratch};
 pub use mesh_phase::{
-    ComponentRef, ContactBand, MeshBoundaryPoint, MeshInputError, MeshOutput, MeshPhase,
-    MeshStats, MeshVerdict, RegionProbes,
+    ComponentRef, ContactBand, MeshBoundaryPoint, MeshInputError, MeshOutput, MeshPhase, MeshStats,
+    MeshVerdict, RegionProbes,
 };
 pub use prepared_object::PreparedObject;
