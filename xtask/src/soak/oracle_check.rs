@@ -263,7 +263,9 @@ fn compare_depths(
                 let nearest = witnesses()
                     .min_by(|x, y| {
                         let gap = |o: &&contact_oracle::OracleContact| {
-                            o.point_a.distance(c.point_a).max(o.point_b.distance(c.point_b))
+                            o.point_a
+                                .distance(c.point_a)
+                                .max(o.point_b.distance(c.point_b))
                         };
                         gap(x).total_cmp(&gap(y))
                     })
