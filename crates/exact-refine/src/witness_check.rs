@@ -21,6 +21,15 @@
 //! For a witness whose p_b is B's globally nearest boundary point to p_a (spheres, any convex
 //! B within its focal distance) the first ball already reaches p_b: one query per side.
 //!
+//! A side whose point is on an edge or at a vertex is not traced: the segment leaves such a
+//! point along a direction of its normal cone, not along a face normal, so that side's own
+//! boundary grazes the segment next to the point (a pencil's apex poking 0.48 mm into the
+//! bowl's bottom, its cone at 45° to the segment: the cone's side passes within
+//! ρ sin 25° of the segment ρ from the apex), which a trace with a 0.05 mm mesh cannot tell
+//! from a wall. Such a point is certified by the refiner's normal-cone test, and the other
+//! point, on a face, by the trace from it. (The through-material goblet pair has A's point on
+//! A's rim edge and B's on B's inner cup, a face: the trace against B rejects it.)
+//!
 //! Why not "globally nearest": a pencil pushed more than half-way into a bowl's wall has the
 //! wall's far side nearer to its tip than the side it entered through, yet the entry side is
 //! the depth a physics engine must undo; the segment rule accepts that witness (the segment
@@ -28,7 +37,7 @@
 //! and the cavity).
 
 use crate::refiner::RefinedContact;
-use geom_param::{DPose3, DVec3};
+use geom_param::{DPose3, DVec3, FeatureLocation};
 
 /// The nearest point of one object's boundary to a query point, as a global representation of
 /// the object (for instance Stage 2's meshes) knows it.
@@ -70,8 +79,9 @@ pub enum WitnessSide {
 pub enum WitnessCheck {
     /// Certified: the segment `point_a` `point_b` meets B's boundary only within
     /// 2e_B + τ of `point_b` and A's only within 2e_A + τ of `point_a` (e: the error bounds of
-    /// the [`NearestBoundary`] queries, τ = 1e-9 of the coordinates). Also for a pair that does
-    /// not penetrate (nothing to check).
+    /// the [`NearestBoundary`] queries, τ = 1e-9 of the coordinates), each side traced where
+    /// its point is on a face (see the module docs). Also for a pair that does not penetrate
+    /// (nothing to check).
     MutuallyNearest,
     /// Not a witness: the boundary of `side` passes within 3e of the segment, farther than
     /// 2e + τ from the segment's end on that side: the pair is measured through the material.
@@ -91,7 +101,8 @@ pub enum WitnessCheck {
 pub const MAX_TRACE_STEPS: u32 = 64;
 
 /// Checks that `witness` (A's frame, B posed by `pose_ab`: point_in_a = pose_ab * point_in_b)
-/// is a pair of mutually nearest boundary points, as described in the module docs. `near_a`
+/// is a pair of mutually nearest boundary points, as described in the module docs: the trace
+/// against B when `location_b` is a face, against A when `location_a` is. `near_a`
 /// answers in A's frame, `near_b` in B's own frame. A witness with `distance >= 0` (not
 /// penetrating) or with non-finite points is returned as [`WitnessCheck::MutuallyNearest`]
 /// and [`WitnessCheck::Undecided`] respectively.
@@ -113,7 +124,15 @@ pub fn check_witness(
     let b_from_a = pose_ab.inverse();
     let to_b = |x: DVec3| near_b.nearest_boundary(b_from_a * x);
     let to_a = |x: DVec3| near_a.nearest_boundary(x);
-    match trace(pa, pb, rounding, &to_b) {
+    let on_face = |l: &FeatureLocation| matches!(l, FeatureLocation::Face { .. });
+    let reached = |start, end, query: &dyn Fn(DVec3) -> Option<BoundaryDistance>, end_on_face| {
+        if end_on_face {
+            trace(start, end, rounding, query)
+        } else {
+            Trace::Reached
+        }
+    };
+    match reached(pa, pb, &to_b, on_face(&witness.location_b)) {
         Trace::Reached => {}
         Trace::Stalled(at) => {
             return WitnessCheck::ThroughMaterial {
@@ -123,7 +142,7 @@ pub fn check_witness(
         }
         Trace::Unknown => return WitnessCheck::Undecided,
     }
-    match trace(pb, pa, rounding, &to_a) {
+    match reached(pb, pa, &to_a, on_face(&witness.location_a)) {
         Trace::Reached => WitnessCheck::MutuallyNearest,
         Trace::Stalled(at) => WitnessCheck::ThroughMaterial {
             side: WitnessSide::A,
@@ -348,6 +367,54 @@ mod tests {
                 side: WitnessSide::A,
                 at,
             } => assert!((at - 15.0).abs() < 2e-3, "{at}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// The through-material pair of the shell test with one point at a vertex: that side is
+    /// not traced (its boundary grazes the segment at an apex), the other still is.
+    #[test]
+    fn a_side_on_a_vertex_is_not_traced() {
+        let pose_ab = DPose3 {
+            translation: DVec3::new(-8.0, 0.0, 0.0),
+            rotation: geom_param::DQuat::IDENTITY,
+        };
+        let ball = Ball {
+            centre: DVec3::ZERO,
+            radius: 3.0,
+            error: 1e-3,
+        };
+        let shell = Shell {
+            inner: 10.0,
+            outer: 12.0,
+        };
+        let mut through = witness(DVec3::new(-3.0, 0.0, 0.0), DVec3::new(4.0, 0.0, 0.0), -7.0);
+        through.location_b = FeatureLocation::Vertex {
+            id: geom_param::VertexId(0),
+        };
+        // B's side (the shell's inner sphere 5 mm along) is skipped; A's is traced: from B's
+        // point (4, 0, 0) towards A's (−3, 0, 0) the ball is entered at (3, 0, 0), 1 mm along.
+        match check_witness(&pose_ab, &through, &ball, &shell) {
+            WitnessCheck::ThroughMaterial {
+                side: WitnessSide::A,
+                at,
+            } => assert!((at - 1.0).abs() < 2e-3, "{at}"),
+            other => panic!("{other:?}"),
+        }
+        // With B's point on a face again and A's at a vertex, B's side is traced and fails.
+        through.location_b = FeatureLocation::Face {
+            id: FaceId(0),
+            u: 0.0,
+            v: 0.0,
+        };
+        through.location_a = FeatureLocation::Vertex {
+            id: geom_param::VertexId(0),
+        };
+        match check_witness(&pose_ab, &through, &ball, &shell) {
+            WitnessCheck::ThroughMaterial {
+                side: WitnessSide::B,
+                ..
+            } => {}
             other => panic!("{other:?}"),
         }
     }
