@@ -8,10 +8,11 @@ use crate::mesh_phase::{
     ComponentRef, ContactBand, MeshBoundaryPoint, MeshInputError, MeshOutput, MeshPhase,
     MeshVerdict,
 };
+use crate::nearest_boundary::nearest_boundary_point;
 use crate::prepared_object::PreparedObject;
 use crate::proxy_path::triangle_path;
 use crate::query_side::Side;
-use geom_param::{ComponentId, ComponentKind, DPose3, ObjectModel, Seed};
+use geom_param::{ComponentKind, DPose3, ObjectModel, Seed};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -95,37 +96,14 @@ impl MeshPhase for MeshNarrowphase {
         PreparedObject::new(object)
     }
 
-    /// Each component's triangle tree answers in turn, bounded by the best distance so far.
+    /// Each component's triangle tree answers in turn ([`nearest_boundary_point`]).
     fn nearest_boundary_point(
         &self,
         object: &ObjectModel,
         prepared: &PreparedObject,
         local_point: DVec3,
     ) -> Option<MeshBoundaryPoint> {
-        if !local_point.is_finite() || prepared.components.len() != object.meshes.len() {
-            return None;
-        }
-        let error_bound = object
-            .meshes
-            .iter()
-            .map(|m| m.chordal_error)
-            .fold(0.0, f64::max);
-        let mut best: Option<MeshBoundaryPoint> = None;
-        for (i, (component, mesh)) in prepared.components.iter().zip(&object.meshes).enumerate() {
-            let reach = best.map_or(f64::MAX, |b| b.distance);
-            let found = component
-                .bvh
-                .nearest(&mesh.positions, &mesh.triangles, local_point, reach);
-            if let Some(n) = found.filter(|n| n.distance < reach) {
-                best = Some(MeshBoundaryPoint {
-                    point: n.point,
-                    distance: n.distance,
-                    component: ComponentId(u32::try_from(i).ok()?),
-                    error_bound,
-                });
-            }
-        }
-        best
+        nearest_boundary_point(object, prepared, local_point)
     }
 
     fn query(

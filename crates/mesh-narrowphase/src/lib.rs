@@ -40,6 +40,7 @@ pub mod default_phase;
 pub mod hill_climb_support;
 mod mesh_intersections;
 pub mod mesh_phase;
+pub mod nearest_boundary;
 pub mod normal_cone;
 pub mod patch_tree;
 pub mod plane_filter;
