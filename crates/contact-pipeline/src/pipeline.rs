@@ -316,7 +316,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     /// (merged with an earlier one within the merge tolerance), and, when the check certifies
     /// the pair mutually nearest and it is the solver's deepest pair (converged, second-order
     /// test passed), a contact with negative distance (merged likewise). In the band and a
-    /// local minimum a contact (merged likewise); anything else dropped. `pair` is (A, B, B's
+    /// local minimum a contact (merged likewise); anything else dropped. The tuple is (A, B, B's
     /// pose in A's frame); `scale` is the larger object's size (mm). Returns true when the
     /// query may stop (depth [`QueryDepth::StateOnly`] and the state is known).
     fn take(
