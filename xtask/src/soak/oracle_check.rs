@@ -354,6 +354,95 @@ mod tests {
         assert_eq!(out.oracle_limits.len(), 1, "{out:?}");
     }
 
+    /// A pipeline depth is matched against the oracle's witnesses: the same pair passes (and
+    /// sets the worst depth difference), a depth 0.1 mm off is a depth mismatch, and so is the
+    /// oracle's deepest witness when the pipeline reports another one.
+    #[test]
+    fn penetration_depths_are_compared_with_the_oracles_witnesses() {
+        use contact_oracle::OracleContact;
+        use exact_refine::{RefineDiagnostics, RefineStatus};
+        use geom_param::{DVec3, FaceId};
+        let options = ContactOptions::default();
+        let face = FeatureLocation::Face {
+            id: FaceId(0),
+            u: 0.5,
+            v: 0.5,
+        };
+        let witness = |depth: f64, x: f64| OracleContact {
+            point_a: DVec3::new(x, 0.0, 0.0),
+            point_b: DVec3::new(x, 0.0, -depth),
+            distance: -depth,
+            normal: DVec3::Z,
+            face_a: FaceId(0),
+            params_a: [0.5, 0.5],
+            face_b: FaceId(0),
+            params_b: [0.5, 0.5],
+            location_a: face,
+            location_b: face,
+            residual: 0.0,
+            iterations: 1,
+        };
+        let mut report = pipeline(PairState::Penetration);
+        report.contacts.push(Contact {
+            point_a: DVec3::ZERO,
+            point_b: DVec3::new(0.0, 0.0, -0.5),
+            distance: -0.5 + 1e-12,
+            normal: DVec3::Z,
+            location_a: face,
+            location_b: face,
+            diagnostics: RefineDiagnostics {
+                iterations: 3,
+                gradient_norm: 0.0,
+                condition: 1.0,
+                converged: true,
+                is_local_minimum: true,
+                error_estimate: 1e-13,
+                point_error_estimate: 1e-12,
+                status: RefineStatus::Converged,
+            },
+        });
+        let oracle = |contacts: Vec<OracleContact>| OracleReport {
+            min_distance: contacts
+                .iter()
+                .map(|c| c.distance)
+                .fold(f64::INFINITY, f64::min),
+            contacts,
+            ..oracle_with_minimum(0.0)
+        };
+        let same = compare(
+            &report,
+            &oracle(vec![witness(0.5, 0.0)]),
+            &options,
+            100.0,
+            -0.5,
+        );
+        assert!(same.depth_mismatches.is_empty(), "{same:?}");
+        assert!(
+            same.worst_depth > 0.0 && same.worst_depth < 1e-11,
+            "{same:?}"
+        );
+        let off = compare(
+            &report,
+            &oracle(vec![witness(0.6, 0.0)]),
+            &options,
+            100.0,
+            -0.6,
+        );
+        assert_eq!(off.depth_mismatches.len(), 2, "{off:?}");
+        let deeper_elsewhere = compare(
+            &report,
+            &oracle(vec![witness(0.5, 0.0), witness(0.7, 20.0)]),
+            &options,
+            100.0,
+            -0.7,
+        );
+        assert_eq!(
+            deeper_elsewhere.depth_mismatches.len(),
+            1,
+            "{deeper_elsewhere:?}"
+        );
+    }
+
     /// An oracle minimum at or below the built gap is judged as before: a pipeline contact
     /// against an oracle penetration deeper than the built one is a state mismatch.
     #[test]
