@@ -4,9 +4,11 @@ use crate::merge::insert_or_merge;
 use crate::options::{ContactOptions, OptionsError, QueryDepth};
 use crate::report::{Contact, PairReport, PairState};
 use bvh_hybrid::{BroadPhase, HybridBvh};
-use exact_refine::{NewtonRefiner, RefinedContact, Refiner};
+use exact_refine::{
+    BoundaryDistance, NearestBoundary, NewtonRefiner, RefinedContact, Refiner, WitnessCheck,
+};
 use geom_param::{
-    ComponentId, DPose3, LoadError, MeshOptions, ObjectDescription, ObjectModel, Seed,
+    ComponentId, DPose3, DVec3, LoadError, MeshOptions, ObjectDescription, ObjectModel, Seed,
 };
 use mesh_narrowphase::{
     ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshVerdict, RegionProbes,
@@ -272,7 +274,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             report.stats.refined += 1;
             unconverged_below |=
                 refined.distance < options.delta1 && !refined.diagnostics.converged;
-            if self.take(&refined, pose_a, scale, report) {
+            if self.take(&refined, (a, b, &pose_ab), pose_a, scale, report) {
                 break;
             }
             // A contact region whose centre seed converged far from the centre holds more than
@@ -293,7 +295,9 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                     &mut scratch.refine,
                 );
                 report.stats.refined += 1;
-                if self.take(&refined, pose_a, scale, report) {
+                unconverged_below |=
+                    refined.distance < options.delta1 && !refined.diagnostics.converged;
+                if self.take(&refined, (a, b, &pose_ab), pose_a, scale, report) {
                     break;
                 }
             }
@@ -302,11 +306,13 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         if report.state != PairState::Penetration
             && report.contacts.is_empty()
             && mesh_overlaps > 0
-            && unconverged_below
+            && (unconverged_below || report.stats.through_material > 0)
         {
-            // The meshes intersect and no seed converged to an answer, but one ended on
-            // overlapping surfaces: the pair is taken as penetrating (an unconverged pair
-            // decides nothing where another seed converged; here nothing did).
+            // The meshes intersect and no seed gave an answer, but one ended on overlapping
+            // surfaces, unconverged or with a witness the check could not certify (a thin
+            // wall, such as a goblet's rim, poking into the other solid passes within the
+            // meshes' error of its own far side): the pair is taken as penetrating. Neither
+            // kind decides anything where another seed found a contact.
             report.state = PairState::Penetration;
         }
         if report.state != PairState::Penetration {
@@ -322,14 +328,23 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
 }
 
 impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
-    /// Enters one refined seed into `report`: below delta1 and converged a penetration witness (merged with
-    /// an earlier one within the merge tolerance), in the band and a local minimum a contact
-    /// (merged likewise), anything else dropped. `scale` is the larger object's size (mm).
-    /// Returns true when the query may stop (depth [`QueryDepth::StateOnly`] and the state is
-    /// known).
+    /// Enters one refined seed into `report`: below delta1 and converged a penetration, unless
+    /// Stage 3's
+    /// witness check ([`Refiner::check_witness`] over Stage 2's meshes) finds the pair measured
+    /// through the material (then it is dropped: no evidence of anything); a witness point
+    /// (merged with an earlier one within the merge tolerance), and, when the check certifies
+    /// the pair mutually nearest and it is the solver's deepest pair (second-order test
+    /// passed), a contact with negative distance (merged likewise). An unconverged pair below
+    /// delta1 proves nothing (one that stopped short on the way to an edge pair's witness may
+    /// be below delta1 where the converged answer is a contact in the band) and is dropped
+    /// here; the query falls back on it only when nothing converged. In the band and a local
+    /// minimum a contact (merged likewise); anything else dropped. The tuple is (A, B, B's
+    /// pose in A's frame); `scale` is the larger object's size (mm). Returns true when the
+    /// query may stop (depth [`QueryDepth::StateOnly`] and the state is known).
     fn take(
         &self,
         refined: &RefinedContact,
+        (a, b, pose_ab): (&PreparedObject<B, M>, &PreparedObject<B, M>, &DPose3),
         pose_a: &DPose3,
         scale: f64,
         report: &mut PairReport,
@@ -337,9 +352,16 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let options = &self.options;
         let state_only = options.depth == QueryDepth::StateOnly;
         if refined.distance < options.delta1 && refined.diagnostics.converged {
-            // Only a converged pair proves the surfaces overlap: one that stopped short (on
-            // the way to an edge pair's witness, say) may be below delta1 where the converged
-            // answer is a contact in the band.
+            let check = self.refiner.check_witness(
+                pose_ab,
+                refined,
+                &MeshBoundary::<B, M>::new(&self.mesh, a),
+                &MeshBoundary::<B, M>::new(&self.mesh, b),
+            );
+            if matches!(check, WitnessCheck::ThroughMaterial { .. }) {
+                report.stats.through_material += 1;
+                return false;
+            }
             report.state = PairState::Penetration;
             let witness = *pose_a * (0.5 * (refined.point_a + refined.point_b));
             let tolerance = merge_tolerance(refined, scale);
@@ -349,6 +371,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 .all(|w| w.distance(witness) > tolerance)
             {
                 report.penetration_witnesses.push(witness);
+            }
+            if check == WitnessCheck::MutuallyNearest
+                && refined.diagnostics.is_local_minimum
+                && insert_or_merge(&mut report.contacts, to_world(refined, pose_a), tolerance)
+            {
+                report.stats.merged += 1;
             }
             return state_only;
         }
@@ -360,6 +388,31 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             report.stats.merged += 1;
         }
         state_only
+    }
+}
+
+/// One prepared object's meshes as Stage 3's [`NearestBoundary`] query (the pipeline adapts
+/// Stage 2's [`MeshPhase::nearest_boundary_point`] to it; neither stage knows the other).
+struct MeshBoundary<'p, B: BroadPhase, M: MeshPhase> {
+    phase: &'p M,
+    object: &'p PreparedObject<B, M>,
+}
+
+impl<'p, B: BroadPhase, M: MeshPhase> MeshBoundary<'p, B, M> {
+    fn new(phase: &'p M, object: &'p PreparedObject<B, M>) -> Self {
+        Self { phase, object }
+    }
+}
+
+impl<B: BroadPhase, M: MeshPhase> NearestBoundary for MeshBoundary<'_, B, M> {
+    fn nearest_boundary(&self, local_point: DVec3) -> Option<BoundaryDistance> {
+        self.phase
+            .nearest_boundary_point(&self.object.model, &self.object.mesh, local_point)
+            .map(|n| BoundaryDistance {
+                point: n.point,
+                distance: n.distance,
+                error_bound: n.error_bound,
+            })
     }
 }
 

@@ -18,14 +18,26 @@ pub enum PairState {
     Penetration,
 }
 
-/// One contact: a local minimum of the distance between the two surfaces inside the band.
+/// One contact: a local minimum of the distance between the two surfaces inside the band, or
+/// (`distance < delta1`) one penetration region's depth.
+///
+/// A penetration contact is the region's exact penetration witness: the deepest pair of
+/// mutually nearest boundary points with opposed normals (a local minimum of the signed
+/// distance; `point_a` on A's boundary inside B, `point_b` on B's boundary inside A), so
+/// `-distance` is the depth along `normal` that separates the region: moving B by
+/// `-distance * normal` brings the pair to touch. "Mutually nearest" is certified by Stage 3
+/// against Stage 2's meshes (`exact_refine::check_witness`): the segment between the points
+/// meets no other part of either boundary beyond the meshes' chordal error.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Contact {
-    /// Closest point on object A (world frame, mm).
+    /// Closest point on object A (world frame, mm); for a penetration, A's point of the
+    /// witness (inside B).
     pub point_a: DVec3,
-    /// Closest point on object B (world frame, mm).
+    /// Closest point on object B (world frame, mm); for a penetration, B's point of the
+    /// witness (inside A).
     pub point_b: DVec3,
-    /// Signed distance (mm): point_b = point_a + distance * normal.
+    /// Signed distance (mm): point_b = point_a + distance * normal; negative for a
+    /// penetration (the depth is -distance).
     pub distance: f64,
     /// Unit normal from A to B (world frame): A's outward normal at `point_a` when that is on
     /// a face, else B's outward normal at `point_b` negated when that is on a face, else for
@@ -65,6 +77,9 @@ pub struct StageStats {
     pub mesh_overlaps: usize,
     /// Refined seeds that duplicated an earlier contact and were merged into it.
     pub merged: usize,
+    /// Refined seeds below delta1 dropped because Stage 3's witness check found them measured
+    /// through the material (`exact_refine::WitnessCheck::ThroughMaterial`).
+    pub through_material: usize,
 }
 
 impl StageStats {
@@ -80,10 +95,15 @@ impl StageStats {
 pub struct PairReport {
     /// Separated, contact or penetration.
     pub state: PairState,
-    /// Every contact (local minimum of distance inside the band), each once.
+    /// Every contact (local minimum of distance inside the band), each once; when
+    /// penetrating, also one entry per penetration region with `distance < delta1` (its exact
+    /// depth, see [`Contact`]), merged like contacts. A region whose depth Stage 3 could not
+    /// certify (no seed, not converged, or the witness check undecided) has a witness point
+    /// in `penetration_witnesses` but no entry here; with [`crate::QueryDepth::StateOnly`]
+    /// the query stops at the first one.
     pub contacts: Vec<Contact>,
-    /// When penetrating: the centres of the intersecting mesh regions (world frame), as witness
-    /// points.
+    /// When penetrating: the centres of the intersecting mesh regions and the midpoints of the
+    /// refined penetration pairs (world frame), as witness points.
     pub penetration_witnesses: Vec<DVec3>,
     /// What ran and how long it took.
     pub stats: StageStats,

@@ -21,6 +21,12 @@
 //! decides that from the signed distance), and surfaces of revolution: it only uses the
 //! `Surface`/`Curve` traits and the `Solid` adjacency of `geom-param`.
 //!
+//! A penetration witness is a critical pair of two features; whether it is a pair of mutually
+//! nearest boundary points (and not a pair measured through the material) needs the rest of
+//! both boundaries: [`Refiner::check_witness`] takes a [`NearestBoundary`] query per object
+//! (the pipeline passes Stage 2's meshes) and sphere-traces the witness's segment
+//! (`witness_check.rs`).
+//!
 //! Units: millimetres and radians. Frames: results in A's object frame.
 
 mod crossing_probe;
@@ -35,7 +41,11 @@ mod penetration;
 mod projection;
 mod refiner;
 mod sym_eigen;
+mod witness_check;
 
 pub use newton_refiner::NewtonRefiner;
 pub use options::NewtonOptions;
 pub use refiner::{RefineDiagnostics, RefineStatus, RefinedContact, Refiner};
+pub use witness_check::{
+    BoundaryDistance, MAX_TRACE_STEPS, NearestBoundary, WitnessCheck, WitnessSide, check_witness,
+};

@@ -1,5 +1,6 @@
 //! The Stage 3 boundary: the [`Refiner`] trait and its result types.
 
+use crate::witness_check::{NearestBoundary, WitnessCheck, check_witness};
 use geom_param::{DPose3, DVec3, FeatureLocation, Seed, Solid};
 
 /// Stage 3 of the paper: from a seed (approximately closest points on two exact features),
@@ -45,6 +46,27 @@ pub trait Refiner {
         seed: &Seed,
         scratch: &mut Self::Scratch,
     ) -> RefinedContact;
+
+    /// Whether a penetrating result of [`Self::refine`] (`witness.distance < 0`) is a pair of
+    /// mutually nearest boundary points: the segment `point_a` `point_b` meets B's boundary
+    /// only at `point_b` and A's only at `point_a`, up to the error bounds of `near_a` (A's
+    /// boundary, queried in A's frame) and `near_b` (B's, queried in B's own frame); see
+    /// [`check_witness`], which the default implementation calls. A refiner sees two features
+    /// only, so this needs a query over each whole boundary: the pipeline passes Stage 2's
+    /// meshes ([`NearestBoundary`]). A pair that fails is measured through the material and is
+    /// no penetration witness ([`WitnessCheck::ThroughMaterial`]).
+    ///
+    /// # Panics
+    /// Never: non-finite points give [`WitnessCheck::Undecided`].
+    fn check_witness(
+        &self,
+        pose_ab: &DPose3,
+        witness: &RefinedContact,
+        near_a: &dyn NearestBoundary,
+        near_b: &dyn NearestBoundary,
+    ) -> WitnessCheck {
+        check_witness(pose_ab, witness, near_a, near_b)
+    }
 }
 
 /// The exact closest pair of two features, in A's frame.

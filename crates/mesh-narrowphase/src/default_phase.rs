@@ -5,8 +5,10 @@ use crate::collision_regions::{IntersectionSegment, RegionScratch};
 use crate::cone_path::{ConeScratch, cone_path};
 use crate::convex_pair::{GjkScratch, HullProximity, WarmStart, hull_proximity};
 use crate::mesh_phase::{
-    ComponentRef, ContactBand, MeshInputError, MeshOutput, MeshPhase, MeshVerdict,
+    ComponentRef, ContactBand, MeshBoundaryPoint, MeshInputError, MeshOutput, MeshPhase,
+    MeshVerdict,
 };
+use crate::nearest_boundary::nearest_boundary_point;
 use crate::prepared_object::PreparedObject;
 use crate::proxy_path::triangle_path;
 use crate::query_side::Side;
@@ -92,6 +94,16 @@ impl MeshPhase for MeshNarrowphase {
 
     fn prepare(&self, object: &ObjectModel) -> PreparedObject {
         PreparedObject::new(object)
+    }
+
+    /// Each component's triangle tree answers in turn ([`nearest_boundary_point`]).
+    fn nearest_boundary_point(
+        &self,
+        object: &ObjectModel,
+        prepared: &PreparedObject,
+        local_point: DVec3,
+    ) -> Option<MeshBoundaryPoint> {
+        nearest_boundary_point(object, prepared, local_point)
     }
 
     fn query(

@@ -40,6 +40,7 @@ pub mod default_phase;
 pub mod hill_climb_support;
 mod mesh_intersections;
 pub mod mesh_phase;
+pub mod nearest_boundary;
 pub mod normal_cone;
 pub mod patch_tree;
 pub mod plane_filter;
@@ -54,7 +55,7 @@ pub mod triangle_intersection;
 
 pub use default_phase::{ConcavePath, MeshNarrowphase, MeshNarrowphaseOptions, MeshScratch};
 pub use mesh_phase::{
-    ComponentRef, ContactBand, MeshInputError, MeshOutput, MeshPhase, MeshStats, MeshVerdict,
-    RegionProbes,
+    ComponentRef, ContactBand, MeshBoundaryPoint, MeshInputError, MeshOutput, MeshPhase, MeshStats,
+    MeshVerdict, RegionProbes,
 };
 pub use prepared_object::PreparedObject;

@@ -193,6 +193,38 @@ pub trait MeshPhase {
         scratch: &mut Self::Scratch,
         out: &mut MeshOutput,
     ) -> MeshVerdict;
+
+    /// The point of the object's meshes (all components: its whole boundary) nearest to
+    /// `local_point` (the object's own frame, mm), with a bound on how far the exact boundary's
+    /// distance can differ ([`MeshBoundaryPoint::error_bound`]: the largest chordal error of
+    /// the components, a Hausdorff bound). `None` for a non-finite point or an object without
+    /// triangles.
+    ///
+    /// Not used by [`Self::query`]: the pipeline hands it to Stage 3, which needs the whole
+    /// boundary to tell a penetration witness from a critical pair measured through the
+    /// material (`exact_refine::Refiner::check_witness`); a nearest-point query on the meshes
+    /// Stage 2 prepared anyway is the cheapest such knowledge (a stage never depends on
+    /// another, so the pipeline adapts one to the other).
+    fn nearest_boundary_point(
+        &self,
+        object: &ObjectModel,
+        prepared: &Self::Prepared,
+        local_point: DVec3,
+    ) -> Option<MeshBoundaryPoint>;
+}
+
+/// What [`MeshPhase::nearest_boundary_point`] returns (the object's frame, mm).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshBoundaryPoint {
+    /// The nearest mesh point.
+    pub point: DVec3,
+    /// Its distance to the query point.
+    pub distance: f64,
+    /// The component whose mesh holds it.
+    pub component: ComponentId,
+    /// Bound on |exact boundary distance − `distance`| (mm): the largest chordal error of the
+    /// object's component meshes.
+    pub error_bound: f64,
 }
 
 /// The outcome of one [`MeshPhase::query`].

@@ -9,6 +9,10 @@
 //!   contacts within [`AMBIGUITY`] of a band edge are borderline on either side, not counted.
 //!   Contacts are compared only when both sides report a contact state (in a penetration the
 //!   pipeline may stop at the first witness).
+//! - **depth**: when both say penetration, every pipeline contact below delta1 (a penetration
+//!   region's depth) must match an oracle penetration witness, and the oracle's deepest
+//!   witness (on faces) must match one of them when the pipeline reports any
+//!   ([`compare_depths`]).
 //! - A match: distances within [`DISTANCE_TOLERANCE`] and both points within
 //!   [`POINT_TOLERANCE`] x size plus the pipeline's own `point_error_estimate` (for a
 //!   continuous contact, where that estimate is infinite, the distance alone).
@@ -65,6 +69,10 @@ pub struct OracleComparison {
     pub cross_check_disagrees: bool,
     /// Disagreements explained by the oracle's documented limits (description each).
     pub oracle_limits: Vec<String>,
+    /// Penetration depths that disagree (description each): see [`compare_depths`].
+    pub depth_mismatches: Vec<String>,
+    /// Largest |depth difference| over matched penetration witnesses (mm).
+    pub worst_depth: f64,
 }
 
 /// Whether a location is on an edge or vertex (where the oracle reports no penetration
@@ -165,6 +173,9 @@ pub fn compare(
             report.state, oracle.min_distance
         ));
     }
+    if truth == OracleState::Penetration && report.state == PairState::Penetration {
+        compare_depths(report, oracle, options, size, &mut out);
+    }
     if truth != OracleState::Contact || report.state != PairState::Contact {
         return out;
     }
@@ -216,6 +227,90 @@ pub fn compare(
     out
 }
 
+/// The depths of a pose both sides call penetrating: each pipeline contact below delta1 (a
+/// penetration region's depth) must be one of the oracle's witnesses (distance within
+/// [`DISTANCE_TOLERANCE`], points as for contacts); and the oracle's deepest witness, when it
+/// lies on a face on both sides (away from its documented edge limits), must be one of the
+/// pipeline's penetration contacts, unless the pipeline reported none (a region whose witness
+/// it could not certify is reported as a witness point only; a missing depth is not a wrong
+/// one). Pipeline witnesses on an edge or vertex without an oracle partner are oracle limits.
+fn compare_depths(
+    report: &PairReport,
+    oracle: &OracleReport,
+    options: &ContactOptions,
+    size: f64,
+    out: &mut OracleComparison,
+) {
+    let deep: Vec<&Contact> = report
+        .contacts
+        .iter()
+        .filter(|c| c.distance < options.delta1)
+        .collect();
+    let witnesses = || oracle.contacts.iter().filter(|o| o.distance < 0.0);
+    for c in &deep {
+        let best = witnesses()
+            .filter_map(|o| matched(c, o.point_a, o.point_b, o.distance, size))
+            .min_by(|x, y| x.0.total_cmp(&y.0));
+        match best {
+            Some((dd, _)) => out.worst_depth = out.worst_depth.max(dd),
+            None if on_edge_or_vertex(&c.location_a) || on_edge_or_vertex(&c.location_b) => {
+                out.oracle_limits.push(format!(
+                    "penetration witness at an edge or vertex: pipeline d {:e} ({:?} {:?})",
+                    c.distance, c.location_a, c.location_b
+                ));
+            }
+            None => {
+                let nearest = witnesses()
+                    .min_by(|x, y| {
+                        let gap = |o: &&contact_oracle::OracleContact| {
+                            o.point_a
+                                .distance(c.point_a)
+                                .max(o.point_b.distance(c.point_b))
+                        };
+                        gap(x).total_cmp(&gap(y))
+                    })
+                    .map(|o| format!("{:e} at {:?} / {:?}", o.distance, o.point_a, o.point_b));
+                out.depth_mismatches.push(format!(
+                    "pipeline depth {:e} at {:?} / {:?} ({:?} {:?}) has no oracle witness \
+                     (nearest oracle witness: {})",
+                    c.distance,
+                    c.point_a,
+                    c.point_b,
+                    c.location_a,
+                    c.location_b,
+                    nearest.unwrap_or_else(|| "none".into())
+                ));
+            }
+        }
+    }
+    if deep.is_empty() {
+        return;
+    }
+    let deepest = witnesses().min_by(|x, y| x.distance.total_cmp(&y.distance));
+    if let Some(o) = deepest.filter(|o| {
+        !on_edge_or_vertex(&o.location_a)
+            && !on_edge_or_vertex(&o.location_b)
+            && o.distance < options.delta1
+            && !near_edge(o.distance, options)
+    }) {
+        let found = deep
+            .iter()
+            .any(|c| matched(c, o.point_a, o.point_b, o.distance, size).is_some());
+        if !found {
+            out.depth_mismatches.push(format!(
+                "oracle's deepest witness {:e} at {:?} / {:?} ({:?} {:?}) not among the \
+                 pipeline's depths {:?}",
+                o.distance,
+                o.point_a,
+                o.point_b,
+                o.location_a,
+                o.location_b,
+                deep.iter().map(|c| c.distance).collect::<Vec<_>>()
+            ));
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -257,6 +352,95 @@ mod tests {
         );
         assert_eq!(out.state_mismatch, None, "{out:?}");
         assert_eq!(out.oracle_limits.len(), 1, "{out:?}");
+    }
+
+    /// A pipeline depth is matched against the oracle's witnesses: the same pair passes (and
+    /// sets the worst depth difference), a depth 0.1 mm off is a depth mismatch, and so is the
+    /// oracle's deepest witness when the pipeline reports another one.
+    #[test]
+    fn penetration_depths_are_compared_with_the_oracles_witnesses() {
+        use contact_oracle::OracleContact;
+        use exact_refine::{RefineDiagnostics, RefineStatus};
+        use geom_param::{DVec3, FaceId};
+        let options = ContactOptions::default();
+        let face = FeatureLocation::Face {
+            id: FaceId(0),
+            u: 0.5,
+            v: 0.5,
+        };
+        let witness = |depth: f64, x: f64| OracleContact {
+            point_a: DVec3::new(x, 0.0, 0.0),
+            point_b: DVec3::new(x, 0.0, -depth),
+            distance: -depth,
+            normal: DVec3::Z,
+            face_a: FaceId(0),
+            params_a: [0.5, 0.5],
+            face_b: FaceId(0),
+            params_b: [0.5, 0.5],
+            location_a: face,
+            location_b: face,
+            residual: 0.0,
+            iterations: 1,
+        };
+        let mut report = pipeline(PairState::Penetration);
+        report.contacts.push(Contact {
+            point_a: DVec3::ZERO,
+            point_b: DVec3::new(0.0, 0.0, -0.5),
+            distance: -0.5 + 1e-12,
+            normal: DVec3::Z,
+            location_a: face,
+            location_b: face,
+            diagnostics: RefineDiagnostics {
+                iterations: 3,
+                gradient_norm: 0.0,
+                condition: 1.0,
+                converged: true,
+                is_local_minimum: true,
+                error_estimate: 1e-13,
+                point_error_estimate: 1e-12,
+                status: RefineStatus::Converged,
+            },
+        });
+        let oracle = |contacts: Vec<OracleContact>| OracleReport {
+            min_distance: contacts
+                .iter()
+                .map(|c| c.distance)
+                .fold(f64::INFINITY, f64::min),
+            contacts,
+            ..oracle_with_minimum(0.0)
+        };
+        let same = compare(
+            &report,
+            &oracle(vec![witness(0.5, 0.0)]),
+            &options,
+            100.0,
+            -0.5,
+        );
+        assert!(same.depth_mismatches.is_empty(), "{same:?}");
+        assert!(
+            same.worst_depth > 0.0 && same.worst_depth < 1e-11,
+            "{same:?}"
+        );
+        let off = compare(
+            &report,
+            &oracle(vec![witness(0.6, 0.0)]),
+            &options,
+            100.0,
+            -0.6,
+        );
+        assert_eq!(off.depth_mismatches.len(), 2, "{off:?}");
+        let deeper_elsewhere = compare(
+            &report,
+            &oracle(vec![witness(0.5, 0.0), witness(0.7, 20.0)]),
+            &options,
+            100.0,
+            -0.7,
+        );
+        assert_eq!(
+            deeper_elsewhere.depth_mismatches.len(),
+            1,
+            "{deeper_elsewhere:?}"
+        );
     }
 
     /// An oracle minimum at or below the built gap is judged as before: a pipeline contact

@@ -86,7 +86,7 @@ pub struct FailureRecord {
     pub seed: u64,
     /// The pose.
     pub pose: Option<SoakPose>,
-    /// What failed: "missed", "false", "state", a property name or "generator".
+    /// What failed: "missed", "false", "state", "depth", a property name or "generator".
     pub what: String,
     /// Details.
     pub detail: String,
@@ -116,6 +116,10 @@ pub struct PairStats {
     pub worst_distance: Worst,
     /// Largest point difference of matched contacts (mm).
     pub worst_point: Worst,
+    /// Penetration depths that disagree with the oracle's witnesses.
+    pub depth_mismatches: usize,
+    /// Largest |depth difference| of matched penetration witnesses (mm).
+    pub worst_depth: Worst,
     /// Poses whose oracle runs at its two spacings disagree (unmatched contacts).
     pub cross_check: usize,
     /// Disagreements explained by the oracle's documented limits (not failures).
@@ -127,12 +131,14 @@ pub struct PairStats {
 }
 
 impl PairStats {
-    /// Missed + false + state mismatches + property failures + generator failures.
+    /// Missed + false + state mismatches + depth mismatches + property failures + generator
+    /// failures.
     #[must_use]
     pub fn failure_count(&self) -> usize {
         self.missed
             + self.false_contacts
             + self.state_mismatches
+            + self.depth_mismatches
             + self.property_failures.values().sum::<usize>()
             + self.generator_failures
     }
@@ -244,6 +250,11 @@ fn run_pose(
     for detail in verdict.false_contacts {
         record("false", detail);
     }
+    stats.depth_mismatches += verdict.depth_mismatches.len();
+    for detail in verdict.depth_mismatches {
+        record("depth", detail);
+    }
+    stats.worst_depth.update(verdict.worst_depth, seed);
     stats.oracle_limits += verdict.oracle_limits.len();
     for detail in verdict.oracle_limits {
         record("oracle-limit", detail);

@@ -19,6 +19,8 @@ pub fn totals(summary: &SoakSummary) -> PairStats {
         total.missed += s.missed;
         total.false_contacts += s.false_contacts;
         total.state_mismatches += s.state_mismatches;
+        total.depth_mismatches += s.depth_mismatches;
+        total.worst_depth.update_from(s.worst_depth);
         total.borderline += s.borderline;
         for (p, n) in &s.property_failures {
             *total.property_failures.entry(*p).or_default() += n;
@@ -55,7 +57,7 @@ fn row(out: &mut String, name: &str, s: &PairStats) {
     let props: usize = s.property_failures.values().sum();
     let _ = writeln!(
         out,
-        "{name:<22} {:>6} {:>5} {:>5} {:>5} {:>6} {:>6} {:>6} {:>6} {:>6} {:>9.2e} {:>9.2e} {:>6} {:>6} {:>4}",
+        "{name:<22} {:>6} {:>5} {:>5} {:>5} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>9.2e} {:>9.2e} {:>9.2e} {:>6} {:>6} {:>4}",
         s.poses,
         s.states[0],
         s.states[1],
@@ -63,10 +65,12 @@ fn row(out: &mut String, name: &str, s: &PairStats) {
         s.missed,
         s.false_contacts,
         s.state_mismatches,
+        s.depth_mismatches,
         s.borderline,
         props,
         s.worst_distance.value,
         s.worst_point.value,
+        s.worst_depth.value,
         s.cross_check,
         s.oracle_limits,
         s.generator_failures,
@@ -79,7 +83,7 @@ pub fn render(summary: &SoakSummary) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6} {:>6} {:>6} {:>6} {:>6} {:>9} {:>9} {:>6} {:>6} {:>4}",
+        "{:<22} {:>6} {:>5} {:>5} {:>5} {:>6} {:>6} {:>6} {:>6} {:>6} {:>6} {:>9} {:>9} {:>9} {:>6} {:>6} {:>4}",
         "pair (A-B)",
         "poses",
         "sep",
@@ -88,10 +92,12 @@ pub fn render(summary: &SoakSummary) -> String {
         "missed",
         "false",
         "state",
+        "depth",
         "border",
         "props",
         "worst d",
         "worst p",
+        "worst dep",
         "xcheck",
         "olimit",
         "gen"
@@ -121,6 +127,7 @@ pub fn render(summary: &SoakSummary) -> String {
             (|s: &PairStats| s.worst_distance) as fn(&PairStats) -> Worst,
         ),
         ("point", |s: &PairStats| s.worst_point),
+        ("depth", |s: &PairStats| s.worst_depth),
     ] {
         if let Some((a, b)) = worst_pair(summary, pick) {
             let w = pick(&total);
