@@ -9,11 +9,13 @@
 //! The defaults are [`bvh_hybrid::HybridBvh`], [`mesh_narrowphase::MeshNarrowphase`] and
 //! [`exact_refine::NewtonRefiner`]; naming another type for one parameter swaps that stage only.
 
+mod coherence;
 mod merge;
 mod options;
 mod pipeline;
 mod report;
 
+pub use coherence::{CoherenceOptions, ContactId, FrameKind, ISOLATED_POINT_ERROR, PairCache};
 pub use options::{ContactOptions, OptionsError, QueryDepth};
 pub use pipeline::{ContactPipeline, PreparedObject, QueryError, QueryScratch};
 pub use report::{Contact, PairReport, PairState, StageStats};

@@ -22,6 +22,9 @@ pub struct PreparedObject<B: BroadPhase = HybridBvh, M: MeshPhase = MeshNarrowph
     pub tree: B::Tree,
     /// Stage 2's per-object data.
     pub mesh: M::Prepared,
+    /// Radius (mm) of a ball about the object's origin that holds its exact surface: the
+    /// largest distance of a mesh vertex from the origin plus the largest chordal error.
+    pub bounding_radius: f64,
 }
 
 /// Caller-owned working memory of queries: pass the same one to every query of a thread so
@@ -51,6 +54,13 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> Default for QueryScratch<B, M, R> 
             seeds: Vec::new(),
             probes: Vec::new(),
         }
+    }
+}
+
+impl<B: BroadPhase, M: MeshPhase, R: Refiner> QueryScratch<B, M, R> {
+    /// Stage 3's part, for warm frames that refine without Stages 1-2.
+    pub(crate) fn refine_scratch(&mut self) -> &mut R::Scratch {
+        &mut self.refine
     }
 }
 
@@ -118,7 +128,13 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     pub fn prepare(&self, model: ObjectModel) -> PreparedObject<B, M> {
         let tree = self.broad.build(&model, self.options.margin);
         let mesh = self.mesh.prepare(&model);
-        PreparedObject { model, tree, mesh }
+        let bounding_radius = bounding_radius(&model);
+        PreparedObject {
+            model,
+            tree,
+            mesh,
+            bounding_radius,
+        }
     }
 
     /// Validates, builds (at the options' chordal tolerance) and preprocesses an object.
@@ -167,7 +183,28 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         scratch: &mut QueryScratch<B, M, R>,
         report: &mut PairReport,
     ) -> Result<(), QueryError> {
+        self.query_recorded(a, pose_a, b, pose_b, scratch, report, None)
+    }
+
+    /// As [`Self::query_into`]; with `record`, Stage 2 runs with the band widened to
+    /// `delta2 + record.slack` and every refined local minimum in `[delta1, delta2 + slack]`
+    /// is also noted in `record` (A's frame) for [`crate::coherence`]. The report itself holds
+    /// the contacts inside the band only, as without `record`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn query_recorded(
+        &self,
+        a: &PreparedObject<B, M>,
+        pose_a: &DPose3,
+        b: &PreparedObject<B, M>,
+        pose_b: &DPose3,
+        scratch: &mut QueryScratch<B, M, R>,
+        report: &mut PairReport,
+        mut record: Option<&mut FullQueryRecord>,
+    ) -> Result<(), QueryError> {
         report.clear();
+        if let Some(record) = record.as_deref_mut() {
+            record.minima.clear();
+        }
         // Rotations within 1e-6 of unit are accepted and normalised, so that no output is
         // scaled by |q|².
         let pose_a = &check_pose(pose_a, "a")?;
@@ -196,7 +233,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let band = ContactBand {
             margin: options.margin,
             delta1: options.delta1,
-            delta2: options.delta2,
+            delta2: options.delta2 + record.as_deref().map_or(0.0, |r| r.slack),
         };
         scratch.seeds.clear();
         scratch.probes.clear();
@@ -268,6 +305,9 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 &mut scratch.refine,
             );
             report.stats.refined += 1;
+            if let Some(record) = record.as_deref_mut() {
+                record.note(&refined, seed, options.delta1, options.delta2, scale);
+            }
             if self.take(&refined, pose_a, scale, report) {
                 break;
             }
@@ -289,6 +329,9 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                     &mut scratch.refine,
                 );
                 report.stats.refined += 1;
+                if let Some(record) = record.as_deref_mut() {
+                    record.note(&refined, end, options.delta1, options.delta2, scale);
+                }
                 if self.take(&refined, pose_a, scale, report) {
                     break;
                 }
@@ -344,6 +387,57 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         }
         state_only
     }
+}
+
+/// What a full query notes for [`crate::coherence`]: the band's widening and every distinct
+/// refined local minimum in `[delta1, delta2 + slack]`, in refinement order, in A's frame,
+/// with the components of the seed it came from.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FullQueryRecord {
+    /// Widening of the band's upper end (mm), >= 0.
+    pub slack: f64,
+    /// The minima, each once (merged as contacts are).
+    pub minima: Vec<(RefinedContact, ComponentId, ComponentId)>,
+}
+
+impl FullQueryRecord {
+    /// Notes `refined` (from `seed`) when it is a local minimum in the widened band and not the
+    /// same minimum as one already noted (points within [`merge_tolerance`]).
+    fn note(
+        &mut self,
+        refined: &RefinedContact,
+        seed: &Seed,
+        delta1: f64,
+        delta2: f64,
+        scale: f64,
+    ) {
+        let d = refined.distance;
+        if !(refined.diagnostics.is_local_minimum && d >= delta1 && d <= delta2 + self.slack) {
+            return;
+        }
+        let tolerance = merge_tolerance(refined, scale);
+        let same = self.minima.iter().any(|(m, _, _)| {
+            m.point_a.distance(refined.point_a) <= tolerance
+                && m.point_b.distance(refined.point_b) <= tolerance
+        });
+        if !same {
+            self.minima
+                .push((*refined, seed.a.component, seed.b.component));
+        }
+    }
+}
+
+/// The largest distance of a mesh vertex from the object's origin plus the largest chordal
+/// error (mm): every exact surface point lies within it.
+fn bounding_radius(model: &ObjectModel) -> f64 {
+    let (mut reach, mut chordal) = (0.0_f64, 0.0_f64);
+    for mesh in &model.meshes {
+        chordal = chordal.max(mesh.chordal_error);
+        for p in &mesh.positions {
+            reach = reach.max(p.length());
+        }
+    }
+    reach + chordal
 }
 
 /// Appends one mesh query's seeds to `seeds` and its region probes to `probes`, with the
@@ -403,9 +497,12 @@ pub enum QueryError {
     /// The mesh phase refused the pair (prepared data from another pipeline, for instance).
     #[error("mesh phase refused the pair: {0}")]
     MeshPhase(String),
+    /// Coherence options that cannot work (see [`crate::CoherenceOptions`]).
+    #[error("bad coherence options: {0}")]
+    BadCoherence(String),
 }
 
-fn check_pose(pose: &DPose3, object: &'static str) -> Result<DPose3, QueryError> {
+pub(crate) fn check_pose(pose: &DPose3, object: &'static str) -> Result<DPose3, QueryError> {
     let q = pose.rotation;
     if !(q.is_finite() && pose.translation.is_finite()) {
         return Err(QueryError::BadPose {
@@ -428,11 +525,11 @@ fn check_pose(pose: &DPose3, object: &'static str) -> Result<DPose3, QueryError>
 
 /// Two refined seeds are the same minimum when their points agree to this distance (mm): far
 /// above the solver's point accuracy, far below any two distinct minima of the fixtures.
-fn merge_tolerance(refined: &RefinedContact, scale: f64) -> f64 {
+pub(crate) fn merge_tolerance(refined: &RefinedContact, scale: f64) -> f64 {
     (1e-6 * scale).max(100.0 * refined.diagnostics.point_error_estimate)
 }
 
-fn to_world(refined: &RefinedContact, pose_a: &DPose3) -> Contact {
+pub(crate) fn to_world(refined: &RefinedContact, pose_a: &DPose3) -> Contact {
     Contact {
         point_a: *pose_a * refined.point_a,
         point_b: *pose_a * refined.point_b,
@@ -444,6 +541,6 @@ fn to_world(refined: &RefinedContact, pose_a: &DPose3) -> Contact {
     }
 }
 
-fn micros(start: Instant) -> f64 {
+pub(crate) fn micros(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e6
 }
