@@ -67,6 +67,16 @@ use std::time::Instant;
 /// new minimum next to it.
 pub const ISOLATED_POINT_ERROR: f64 = 1e-7;
 
+/// Most Newton steps a warm refinement may take: following a minimum over a small motion takes
+/// a few quadratically converging steps; more means the iteration went looking elsewhere.
+pub const WARM_MAX_ITERATIONS: u32 = 12;
+
+/// A followed minimum's points may move, each in its own object's frame, by at most this many
+/// times the motion bound since the last frame (plus [`ISOLATED_POINT_ERROR`]): a minimum
+/// followed continuously moves with the motion, times the ratio of the surfaces' radii of
+/// curvature to their relative one, which this allows up to.
+pub const WARM_POINT_TRAVEL: f64 = 20.0;
+
 /// Options of coherent queries.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CoherenceOptions {
@@ -134,6 +144,8 @@ pub struct PairCache {
     key: Option<[u64; 6]>,
     /// B's pose in A's frame at the last full query, when its minima are tracked.
     reference: Option<DPose3>,
+    /// B's pose in A's frame at the last query.
+    previous: Option<DPose3>,
     slack: f64,
     radius_b: f64,
     warm_frames: u32,
@@ -246,6 +258,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             FrameKind::Full
         };
         cache.kind = Some(kind);
+        cache.previous = Some(pose_ab);
         cache.last = report
             .contacts
             .iter()
@@ -324,6 +337,10 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         report.stats.refine_ran = !cache.tracked.is_empty();
         let mut refined_all: Vec<RefinedContact> = Vec::with_capacity(cache.tracked.len());
         cache.ids.clear();
+        let step = cache
+            .previous
+            .map_or(f64::INFINITY, |p| motion_bound(&p, pose_ab, cache.radius_b));
+        let travel = WARM_POINT_TRAVEL * step + ISOLATED_POINT_ERROR;
         for t in &cache.tracked {
             let refined = self.refiner.refine(
                 &a.model.solid,
@@ -333,8 +350,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 scratch.refine_scratch(),
             );
             report.stats.refined += 1;
+            let local_b = pose_ab.inverse() * refined.point_b;
             let ok = refined.diagnostics.status == RefineStatus::Converged
                 && isolated(&refined)
+                && refined.diagnostics.iterations <= WARM_MAX_ITERATIONS
+                && refined.point_a.distance(t.seed.a.local_point) <= travel
+                && local_b.distance(t.seed.b.local_point) <= travel
                 && refined.distance >= options.delta1;
             let tolerance = merge_tolerance(&refined, scale);
             let distinct = refined_all.iter().all(|r| {
