@@ -11,8 +11,8 @@
 #![allow(missing_docs)]
 
 use contact_pipeline::{
-    CoherenceOptions, ContactOptions, ContactPipeline, PairCache, PairReport, PreparedObject,
-    QueryScratch,
+    CoherenceOptions, ContactOptions, ContactPipeline, FrameKind, PairCache, PairReport,
+    PreparedObject, QueryScratch,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectFile};
@@ -104,9 +104,59 @@ fn load(name: &str) -> Scene {
     }
 }
 
+/// One pass over the trajectory: warm frames, refinements per frame and Stage 3 time per warm
+/// frame, printed beside the timings.
+fn census(scene: &Scene, name: &str) {
+    let options = CoherenceOptions::default();
+    let (mut cache, mut scratch, mut report) = (
+        PairCache::new(),
+        QueryScratch::default(),
+        PairReport::default(),
+    );
+    let (mut warm, mut refined, mut refine_us, mut contacts) = (0, 0, 0.0, 0);
+    let (mut warm_us, mut full_us) = (0.0, 0.0);
+    for pose in &scene.trajectory {
+        let start = std::time::Instant::now();
+        let kind = scene
+            .pipeline
+            .query_coherent(
+                &scene.a,
+                &scene.pose_a,
+                &scene.b,
+                pose,
+                &options,
+                &mut cache,
+                &mut scratch,
+                &mut report,
+            )
+            .expect("query");
+        let us = start.elapsed().as_secs_f64() * 1e6;
+        contacts += report.contacts.len();
+        if kind == FrameKind::Full {
+            full_us += us;
+        }
+        if kind == FrameKind::Warm {
+            warm_us += us;
+            warm += 1;
+            refined += report.stats.refined;
+            refine_us += report.stats.refine_us;
+        }
+    }
+    eprintln!(
+        "{name}: {warm}/{FRAMES} frames warm ({:.2} µs each), full ones {:.2} µs each, {:.2} contacts/frame, {:.2} refinements and {:.2} µs of Stage 3 per warm frame, {} minima tracked at the end",
+        warm_us / warm.max(1) as f64,
+        full_us / (FRAMES - warm).max(1) as f64,
+        contacts as f64 / FRAMES as f64,
+        refined as f64 / warm.max(1) as f64,
+        refine_us / warm.max(1) as f64,
+        cache.tracked_minima()
+    );
+}
+
 fn coherence(c: &mut Criterion) {
     for name in SCENES {
         let scene = load(name);
+        census(&scene, name);
         let mut group = c.benchmark_group(format!("coherence/{name}"));
         group
             .warm_up_time(Duration::from_millis(300))

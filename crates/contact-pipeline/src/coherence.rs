@@ -26,7 +26,9 @@
 //!    completeness, the same one a cold query relies on), whatever component pair it lies in
 //!    (a component pair farther apart than the margin at P0 is farther than
 //!    margin − s >= delta2 at P1);
-//! 2. a minimum above `delta2 + s` at P0 stays above `delta2` at P1 and is not missed;
+//! 2. a minimum above `delta2 + s` at P0 stays above `delta2` at P1 and is not missed; by
+//!    the same bound a tracked minimum last refined at P' with value v is not refined again
+//!    while v − moved(P', P1) > delta2 (it cannot be in the band yet);
 //! 3. each tracked minimum is followed by Newton from its last feature locations, which the
 //!    cache checks: every refinement must converge ([`RefineStatus::Converged`]) to an isolated
 //!    local minimum (point error below [`ISOLATED_POINT_ERROR`]) at or above delta1, and no two
@@ -72,7 +74,7 @@ pub const ISOLATED_POINT_ERROR: f64 = 1e-7;
 pub const WARM_MAX_ITERATIONS: u32 = 12;
 
 /// A followed minimum's points may move, each in its own object's frame, by at most this many
-/// times the motion bound since the last frame (plus [`ISOLATED_POINT_ERROR`]): a minimum
+/// times the motion bound since it was last refined (plus [`ISOLATED_POINT_ERROR`]): a minimum
 /// followed continuously moves with the motion, times the ratio of the surfaces' radii of
 /// curvature to their relative one, which this allows up to.
 pub const WARM_POINT_TRAVEL: f64 = 20.0;
@@ -116,12 +118,39 @@ pub enum FrameKind {
     Warm,
 }
 
-/// One tracked minimum: a seed on its last exact points, and the id of its contact when it was
-/// last inside the band.
+/// One tracked minimum: where it was when last refined (a seed on its features' parameters,
+/// the points in their own objects' frames, the distance and B's pose in A's frame then), and
+/// the id of its contact when it was last inside the band.
 #[derive(Clone, Copy, Debug)]
 struct Tracked {
+    /// Feature locations with non-finite points: the refiner starts from the parameters.
     seed: Seed,
+    local_a: DVec3,
+    local_b: DVec3,
+    distance: f64,
+    at: DPose3,
     id: Option<ContactId>,
+}
+
+impl Tracked {
+    fn new(
+        m: &RefinedContact,
+        ca: ComponentId,
+        cb: ComponentId,
+        pose_ab: &DPose3,
+        model_a: &ObjectModel,
+        model_b: &ObjectModel,
+        id: Option<ContactId>,
+    ) -> Self {
+        Self {
+            seed: seed_from(m, ca, cb, model_a, model_b),
+            local_a: m.point_a,
+            local_b: pose_ab.inverse() * m.point_b,
+            distance: m.distance,
+            at: *pose_ab,
+            id,
+        }
+    }
 }
 
 /// The last frame's contact, for matching ids after a full query: points in their own object's
@@ -144,8 +173,6 @@ pub struct PairCache {
     key: Option<[u64; 6]>,
     /// B's pose in A's frame at the last full query, when its minima are tracked.
     reference: Option<DPose3>,
-    /// B's pose in A's frame at the last query.
-    previous: Option<DPose3>,
     slack: f64,
     radius_b: f64,
     warm_frames: u32,
@@ -155,6 +182,8 @@ pub struct PairCache {
     next_id: u64,
     kind: Option<FrameKind>,
     record: FullQueryRecord,
+    /// Buffer of a warm frame's refinements (tracked index, result).
+    refined_now: Vec<(usize, RefinedContact)>,
 }
 
 impl PairCache {
@@ -239,7 +268,8 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             cache.last.clear();
             cache.ids.clear();
         }
-        let old_last = std::mem::take(&mut cache.last);
+        // The last frame's contacts, for a full query's ids; the buffer is refilled below.
+        let mut last = std::mem::take(&mut cache.last);
 
         let warm_allowed = options.depth == QueryDepth::Contacts
             && cache.warm_frames < coherence.max_warm_frames
@@ -251,25 +281,32 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             cache.warm_frames += 1;
             FrameKind::Warm
         } else {
-            self.full(
+            let full = self.full(
                 a, pose_a, b, pose_b, &pose_ab, fraction, cache, scratch, report,
-            )?;
-            assign_full_ids(cache, &old_last, report, &checked_a, &checked_b, coherence);
+            );
+            if let Err(e) = full {
+                cache.last = last;
+                return Err(e);
+            }
+            assign_full_ids(cache, &last, report, &checked_a, &checked_b, coherence);
             FrameKind::Full
         };
         cache.kind = Some(kind);
-        cache.previous = Some(pose_ab);
-        cache.last = report
-            .contacts
-            .iter()
-            .zip(&cache.ids)
-            .map(|(c, &id)| LastContact {
-                local_a: checked_a.inverse() * c.point_a,
-                local_b: checked_b.inverse() * c.point_b,
-                features: (c.location_a.feature(), c.location_b.feature()),
-                id,
-            })
-            .collect();
+        let (inv_a, inv_b) = (checked_a.inverse(), checked_b.inverse());
+        last.clear();
+        last.extend(
+            report
+                .contacts
+                .iter()
+                .zip(&cache.ids)
+                .map(|(c, &id)| LastContact {
+                    local_a: inv_a * c.point_a,
+                    local_b: inv_b * c.point_b,
+                    features: (c.location_a.feature(), c.location_b.feature()),
+                    id,
+                }),
+        );
+        cache.last = last;
         Ok(kind)
     }
 
@@ -302,12 +339,11 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             && report.state != PairState::Penetration
             && record.minima.iter().all(|(m, _, _)| isolated(m));
         if trackable {
-            cache
-                .tracked
-                .extend(record.minima.iter().map(|(m, ca, cb)| Tracked {
-                    seed: seed_from(m, *ca, *cb, pose_ab, &a.model, &b.model),
-                    id: None,
-                }));
+            cache.tracked.extend(
+                record.minima.iter().map(|(m, ca, cb)| {
+                    Tracked::new(m, *ca, *cb, pose_ab, &a.model, &b.model, None)
+                }),
+            );
             cache.reference = Some(*pose_ab);
             cache.slack = slack;
             cache.radius_b = b.bounding_radius;
@@ -334,14 +370,17 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let options = self.options();
         let start = Instant::now();
         let scale = a.model.scale.max(b.model.scale);
-        report.stats.refine_ran = !cache.tracked.is_empty();
-        let mut refined_all: Vec<RefinedContact> = Vec::with_capacity(cache.tracked.len());
         cache.ids.clear();
-        let step = cache
-            .previous
-            .map_or(f64::INFINITY, |p| motion_bound(&p, pose_ab, cache.radius_b));
-        let travel = WARM_POINT_TRAVEL * step + ISOLATED_POINT_ERROR;
-        for t in &cache.tracked {
+        let radius = cache.radius_b;
+        // Pass 1: refine the minima that may be in the band now (a minimum's value changes by
+        // at most the motion since it was refined) and check that each was followed.
+        let mut refined_now = std::mem::take(&mut cache.refined_now);
+        refined_now.clear();
+        for (k, t) in cache.tracked.iter().enumerate() {
+            let moved = motion_bound(&t.at, pose_ab, radius);
+            if t.distance - moved > options.delta2 {
+                continue;
+            }
             let refined = self.refiner.refine(
                 &a.model.solid,
                 &b.model.solid,
@@ -350,32 +389,37 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 scratch.refine_scratch(),
             );
             report.stats.refined += 1;
+            let travel = WARM_POINT_TRAVEL * moved + ISOLATED_POINT_ERROR;
             let local_b = pose_ab.inverse() * refined.point_b;
-            let ok = refined.diagnostics.status == RefineStatus::Converged
-                && isolated(&refined)
+            let followed = isolated(&refined)
                 && refined.diagnostics.iterations <= WARM_MAX_ITERATIONS
-                && refined.point_a.distance(t.seed.a.local_point) <= travel
-                && local_b.distance(t.seed.b.local_point) <= travel
+                && refined.point_a.distance(t.local_a) <= travel
+                && local_b.distance(t.local_b) <= travel
                 && refined.distance >= options.delta1;
             let tolerance = merge_tolerance(&refined, scale);
-            let distinct = refined_all.iter().all(|r| {
+            let distinct = refined_now.iter().all(|(_, r)| {
                 r.point_a.distance(refined.point_a) > tolerance
                     || r.point_b.distance(refined.point_b) > tolerance
             });
-            if !(ok && distinct) {
+            if !(followed && distinct) {
                 cache.invalidate();
+                cache.refined_now = refined_now;
                 return false;
             }
-            refined_all.push(refined);
+            refined_now.push((k, refined));
         }
-        for (t, refined) in cache.tracked.iter_mut().zip(&refined_all) {
-            t.seed = seed_from(
+        report.stats.refine_ran = !refined_now.is_empty();
+        // Pass 2: update them and report those in the band, in tracking order.
+        for (k, refined) in &refined_now {
+            let t = &mut cache.tracked[*k];
+            *t = Tracked::new(
                 refined,
                 t.seed.a.component,
                 t.seed.b.component,
                 pose_ab,
                 &a.model,
                 &b.model,
+                t.id,
             );
             if refined.distance <= options.delta2 {
                 let tolerance = merge_tolerance(refined, scale);
@@ -394,6 +438,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             report.state = PairState::Contact;
         }
         report.stats.refine_us = micros(start);
+        cache.refined_now = refined_now;
         true
     }
 }
@@ -417,13 +462,14 @@ fn motion_bound(p0: &DPose3, p1: &DPose3, radius: f64) -> f64 {
     (p1.translation - p0.translation).length() + omega * radius
 }
 
-/// A seed on `m`'s exact points and features (B's point back in B's frame), with the component
-/// of each face, or `ca` / `cb` for an edge or vertex.
+/// A seed on `m`'s features and parameters, with the component of each face, or `ca` / `cb`
+/// for an edge or vertex. Its points are not finite: the refiner starts from the parameters
+/// (the [`Refiner`] contract allows either), which are the exact minimum already, so no
+/// projection is needed.
 fn seed_from(
     m: &RefinedContact,
     ca: ComponentId,
     cb: ComponentId,
-    pose_ab: &DPose3,
     model_a: &ObjectModel,
     model_b: &ObjectModel,
 ) -> Seed {
@@ -436,12 +482,12 @@ fn seed_from(
     Seed {
         a: SeedPoint {
             component: component(&m.location_a, model_a, ca),
-            local_point: m.point_a,
+            local_point: DVec3::NAN,
             location: m.location_a,
         },
         b: SeedPoint {
             component: component(&m.location_b, model_b, cb),
-            local_point: pose_ab.inverse() * m.point_b,
+            local_point: DVec3::NAN,
             location: m.location_b,
         },
     }
@@ -495,7 +541,7 @@ fn assign_full_ids(
     // The tracked minima inside the band are the report's contacts (the same refinements).
     let pose_a_copy = *pose_a;
     for t in &mut cache.tracked {
-        let point_a = pose_a_copy * t.seed.a.local_point;
+        let point_a = pose_a_copy * t.local_a;
         t.id = report
             .contacts
             .iter()
