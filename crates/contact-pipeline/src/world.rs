@@ -158,7 +158,7 @@ pub struct World<
     R: Refiner = exact_refine::NewtonRefiner,
 > {
     pipeline: ContactPipeline<B, M, R>,
-    coherence: CoherenceOptions,
+    coherence: Option<CoherenceOptions>,
     slots: Vec<Slot<B, M>>,
     free: Vec<u32>,
     bvh: Bvh,
@@ -171,9 +171,12 @@ pub struct World<
 }
 
 impl<B: BroadPhase, M: MeshPhase, R: Refiner> World<B, M, R> {
-    /// An empty world answering with `pipeline` and `coherence`.
+    /// An empty world answering with `pipeline`; with `coherence`, each pair by
+    /// [`ContactPipeline::query_coherent`] (warm frames, contact ids), without (`None`, for
+    /// one-off queries: the coherent full query widens the band) by
+    /// [`ContactPipeline::query_into`], and [`WorldPair::ids`] is empty.
     #[must_use]
-    pub fn new(pipeline: ContactPipeline<B, M, R>, coherence: CoherenceOptions) -> Self {
+    pub fn new(pipeline: ContactPipeline<B, M, R>, coherence: Option<CoherenceOptions>) -> Self {
         Self {
             pipeline,
             coherence,
@@ -401,7 +404,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> World<B, M, R> {
     pub fn step(&mut self) -> Result<WorldStats, WorldError> {
         self.broad_phase();
         let start = std::time::Instant::now();
-        let (pipeline, coherence, slots) = (&self.pipeline, &self.coherence, &self.slots);
+        let (pipeline, coherence, slots) = (&self.pipeline, self.coherence.as_ref(), &self.slots);
         for (&k, entry) in &mut self.pairs {
             answer(pipeline, coherence, slots, k, entry);
         }
@@ -450,7 +453,11 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> World<B, M, R> {
                 generation: e.generations.1,
             },
             report: &e.report,
-            ids: e.cache.contact_ids(),
+            ids: if self.coherence.is_some() {
+                e.cache.contact_ids()
+            } else {
+                &[]
+            },
             frame: e.frame,
         })
     }
@@ -476,7 +483,7 @@ where
         use rayon::prelude::*;
         self.broad_phase();
         let start = std::time::Instant::now();
-        let (pipeline, coherence, slots) = (&self.pipeline, &self.coherence, &self.slots);
+        let (pipeline, coherence, slots) = (&self.pipeline, self.coherence.as_ref(), &self.slots);
         let mut entries: Vec<((u32, u32), &mut PairEntry<B, M, R>)> =
             self.pairs.iter_mut().map(|(&k, e)| (k, e)).collect();
         entries
@@ -490,7 +497,7 @@ where
 /// Queries one pair into its entry.
 fn answer<B: BroadPhase, M: MeshPhase, R: Refiner>(
     pipeline: &ContactPipeline<B, M, R>,
-    coherence: &CoherenceOptions,
+    coherence: Option<&CoherenceOptions>,
     slots: &[Slot<B, M>],
     (i, j): (u32, u32),
     entry: &mut PairEntry<B, M, R>,
@@ -499,16 +506,21 @@ fn answer<B: BroadPhase, M: MeshPhase, R: Refiner>(
     let (Some(a), Some(b)) = (&sa.object, &sb.object) else {
         return;
     };
-    let result = pipeline.query_coherent(
-        a,
-        &sa.pose,
-        b,
-        &sb.pose,
-        coherence,
-        &mut entry.cache,
-        &mut entry.scratch,
-        &mut entry.report,
-    );
+    let result = match coherence {
+        Some(coherence) => pipeline.query_coherent(
+            a,
+            &sa.pose,
+            b,
+            &sb.pose,
+            coherence,
+            &mut entry.cache,
+            &mut entry.scratch,
+            &mut entry.report,
+        ),
+        None => pipeline
+            .query_into(a, &sa.pose, b, &sb.pose, &mut entry.scratch, &mut entry.report)
+            .map(|()| FrameKind::Full),
+    };
     match result {
         Ok(frame) => {
             entry.frame = frame;

@@ -107,7 +107,7 @@ pub fn grid(models: &[Model], n: usize) -> Vec<(usize, DPose3)> {
 /// A world with `n` grid objects; their keys in insertion order.
 pub fn world(n: usize, model_count: usize) -> (World, Vec<Model>, Vec<ObjectKey>) {
     let (pipeline, models) = models(model_count);
-    let mut world = World::new(pipeline, CoherenceOptions::default());
+    let mut world = World::new(pipeline, Some(CoherenceOptions::default()));
     let keys = grid(&models, n)
         .into_iter()
         .map(|(m, pose)| {
