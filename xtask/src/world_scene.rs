@@ -14,7 +14,14 @@ use serde_json::{Value, json};
 pub const GAP: f64 = 0.05;
 
 /// Objects of the scene, by fixture name.
-pub const OBJECTS: [&str; 6] = ["pencil", "paperweight", "jar", "rounded-box", "tube", "vase"];
+pub const OBJECTS: [&str; 6] = [
+    "pencil",
+    "paperweight",
+    "jar",
+    "rounded-box",
+    "tube",
+    "vase",
+];
 
 /// Instances in the scene.
 pub const COUNT: usize = 300;

@@ -484,8 +484,7 @@ where
         self.broad_phase();
         let start = std::time::Instant::now();
         let (pipeline, coherence, slots) = (&self.pipeline, self.coherence.as_ref(), &self.slots);
-        let mut entries: Vec<((u32, u32), &mut PairEntry<B, M, R>)> =
-            self.pairs.iter_mut().map(|(&k, e)| (k, e)).collect();
+        let mut entries: Vec<_> = self.pairs.iter_mut().map(|(&k, e)| (k, e)).collect();
         entries
             .par_iter_mut()
             .with_min_len(4)
@@ -518,7 +517,14 @@ fn answer<B: BroadPhase, M: MeshPhase, R: Refiner>(
             &mut entry.report,
         ),
         None => pipeline
-            .query_into(a, &sa.pose, b, &sb.pose, &mut entry.scratch, &mut entry.report)
+            .query_into(
+                a,
+                &sa.pose,
+                b,
+                &sb.pose,
+                &mut entry.scratch,
+                &mut entry.report,
+            )
             .map(|()| FrameKind::Full),
     };
     match result {

@@ -113,7 +113,7 @@ fn motion(kind: Motion, k: usize, c: DVec3, n: DVec3, u: DVec3, phase: f64) -> D
         // Roll about the tangent axis through the contact, swinging back and forth, lifted by
         // a few micrometres so that the contact stays in the band.
         Motion::Rolling => {
-            let angle = 4e-3 * (0.15 * s + 6.28 * phase).sin();
+            let angle = 4e-3 * (0.15 * s + std::f64::consts::TAU * phase).sin();
             shift(n * 0.002) * about(n.cross(u).normalize(), angle, c)
         }
         Motion::Sliding => shift(u * 0.01 * s + n * (0.003 * (0.2 * s).sin())),

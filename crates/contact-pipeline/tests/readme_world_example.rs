@@ -2,7 +2,9 @@
 //! (one preparation shared by the four) 0.05 mm apart, spinning and gliding together over ten
 //! frames; every frame has the three contacts at exactly the gap, and each keeps its id.
 
-use contact_pipeline::{CoherenceOptions, ContactOptions, ContactPipeline, FrameKind, Groups, World};
+use contact_pipeline::{
+    CoherenceOptions, ContactOptions, ContactPipeline, FrameKind, Groups, World,
+};
 use geom_param::{DPose3, DQuat, DVec3, ObjectDescription};
 use std::sync::Arc;
 
@@ -18,7 +20,10 @@ fn a_row_of_balls_over_frames() -> Result<(), Box<dyn std::error::Error>> {
     let gap = 0.05;
     let at = |i: usize, frame: f64| {
         let spin = DQuat::from_rotation_z(0.0005 * frame);
-        DPose3::from_parts(DVec3::new(i as f64 * (20.0 + gap), 0.002 * frame, 0.0), spin)
+        DPose3::from_parts(
+            DVec3::new(i as f64 * (20.0 + gap), 0.002 * frame, 0.0),
+            spin,
+        )
     };
     let balls = (0..4)
         .map(|i| world.insert(Arc::clone(&ball), at(i, 0.0), Groups::default()))
@@ -28,10 +33,16 @@ fn a_row_of_balls_over_frames() -> Result<(), Box<dyn std::error::Error>> {
             world.set_pose(key, at(i, f64::from(frame)))?;
         }
         let stats = world.step()?; // every pair in range, each with its coherence cache
-        println!("frame {frame}: {} pairs in range, {} warm", stats.pairs_queried, stats.warm);
+        println!(
+            "frame {frame}: {} pairs in range, {} warm",
+            stats.pairs_queried, stats.warm
+        );
         for pair in world.pairs() {
             for (contact, id) in pair.report.contacts.iter().zip(pair.ids) {
-                println!("  {:?}-{:?} #{}: d = {:.9} mm", pair.a.index, pair.b.index, id.0, contact.distance);
+                println!(
+                    "  {:?}-{:?} #{}: d = {:.9} mm",
+                    pair.a.index, pair.b.index, id.0, contact.distance
+                );
             }
         }
         // --- README example ends here ---
