@@ -56,7 +56,7 @@ pub fn generate_fixtures() -> Result<Vec<(PathBuf, String)>, String> {
         files.push((Path::new("fixtures/scenes").join(name), contents));
     }
     let (name, contents) = world_scene::generate_world_scene(&objects)?;
-    files.push((Path::new("fixtures/scenes").join(name), contents));
+    files.push((Path::new("fixtures/worlds").join(name), contents));
     Ok(files)
 }
 

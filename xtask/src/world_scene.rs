@@ -1,4 +1,5 @@
-//! The many-object scene `fixtures/scenes/world-300.json`: 300 upright instances of six
+//! The many-object scene `fixtures/worlds/world-300.json` (apart from the pair scenes of
+//! `fixtures/scenes/`, whose tests expect two objects): 300 upright instances of six
 //! fixture objects on a grid with near contacts, for `contacts query` through a `World`.
 //!
 //! Along x each row repeats one object, each instance [`GAP`] mm beyond its neighbour's mesh

@@ -2,8 +2,8 @@
 //! (`tests/support/grid.rs`): time per step with every object moving a little each step
 //! (a few micrometres and 1e-5 rad, oscillating), on 1 and 2 rayon threads
 //! (`World::step_parallel`), and the one-thread `World::step`; plus, printed, the objects,
-//! pairs in range and queried, warm pairs and contacts of a step. Needs the `parallel` feature:
-//! `cargo bench -p contact-pipeline --features parallel --bench world`.
+//! pairs in range and queried, warm pairs and contacts of a step. Needs the `parallel` feature
+//! (on by default): `cargo bench -p contact-pipeline --bench world`.
 
 // `criterion_group!` expands to an undocumented public function.
 #![allow(missing_docs)]

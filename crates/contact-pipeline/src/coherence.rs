@@ -12,12 +12,14 @@
 //! in `[delta1, delta2 + s]` (the *tracked* minima). At a later P1 the cache computes
 //!
 //! ```text
-//! moved = |t1 − t0| + ω · r_B,   ω = angle of R1 R0⁻¹ ∈ [0, π],  r_B = B's bounding radius,
+//! moved = |P1 c − P0 c| + ω · r_B,   ω = angle of R1 R0⁻¹ ∈ [0, π],
 //! ```
 //!
-//! the length of the path of any point of B in A's frame under the screw motion from P0 to P1
-//! (rotation about B's origin at the constant rate ω, translation at the constant rate
-//! t1 − t0: a point's speed is at most |t1 − t0| + ω |x|). Along that path D(x, ·) changes by
+//! with c and r_B the centre (B's frame) and radius of a ball holding B's surface
+//! ([`PreparedObject::bounding_centre`], [`PreparedObject::bounding_radius`]): the length of the
+//! path of any point of B in A's frame under the motion from P0 to P1 that moves c straight
+//! at a constant rate and turns B about c at the constant rate ω (a point c + y moves at a
+//! speed of at most |P1 c − P0 c| + ω |y|, |y| <= r_B). Along that path D(x, ·) changes by
 //! at most `moved` for every fixed x, and so does the value of a local minimum followed
 //! continuously (at a minimum ∇ₓD = 0, so d/ds D(x(s), s) = ∂D/∂s). Hence, when
 //! `moved <= s`:
@@ -174,7 +176,8 @@ pub struct PairCache {
     /// B's pose in A's frame at the last full query, when its minima are tracked.
     reference: Option<DPose3>,
     slack: f64,
-    radius_b: f64,
+    /// B's bounding ball (centre in B's frame, radius), for the motion bound.
+    ball_b: (DVec3, f64),
     warm_frames: u32,
     tracked: Vec<Tracked>,
     last: Vec<LastContact>,
@@ -275,7 +278,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             && cache.warm_frames < coherence.max_warm_frames
             && cache
                 .reference
-                .is_some_and(|p0| motion_bound(&p0, &pose_ab, cache.radius_b) <= cache.slack);
+                .is_some_and(|p0| motion_bound(&p0, &pose_ab, cache.ball_b) <= cache.slack);
         let kind = if warm_allowed && self.warm(a, b, &checked_a, &pose_ab, cache, scratch, report)
         {
             cache.warm_frames += 1;
@@ -346,7 +349,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             );
             cache.reference = Some(*pose_ab);
             cache.slack = slack;
-            cache.radius_b = b.bounding_radius;
+            cache.ball_b = (b.bounding_centre, b.bounding_radius);
         }
         cache.record = record;
         result
@@ -371,13 +374,13 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let start = Instant::now();
         let scale = a.model.scale.max(b.model.scale);
         cache.ids.clear();
-        let radius = cache.radius_b;
+        let ball = cache.ball_b;
         // Pass 1: refine the minima that may be in the band now (a minimum's value changes by
         // at most the motion since it was refined) and check that each was followed.
         let mut refined_now = std::mem::take(&mut cache.refined_now);
         refined_now.clear();
         for (k, t) in cache.tracked.iter().enumerate() {
-            let moved = motion_bound(&t.at, pose_ab, radius);
+            let moved = motion_bound(&t.at, pose_ab, ball);
             if t.distance - moved > options.delta2 {
                 continue;
             }
@@ -451,15 +454,15 @@ fn isolated(m: &RefinedContact) -> bool {
         && m.diagnostics.point_error_estimate <= ISOLATED_POINT_ERROR
 }
 
-/// The path length bound of the module documentation: |t1 − t0| + ω r (mm), ω the rotation
-/// angle of R1 R0⁻¹.
-fn motion_bound(p0: &DPose3, p1: &DPose3, radius: f64) -> f64 {
+/// The path length bound of the module documentation: |P1 c − P0 c| + ω r (mm) for the ball
+/// (c, r), ω the rotation angle of R1 R0⁻¹.
+fn motion_bound(p0: &DPose3, p1: &DPose3, (centre, radius): (DVec3, f64)) -> f64 {
     let relative = p1.rotation * p0.rotation.inverse();
     // Angle from the quaternion's vector part and scalar part (stable near 0 and π).
     let w = relative.w.abs();
     let v = DVec3::new(relative.x, relative.y, relative.z).length();
     let omega = 2.0 * v.atan2(w);
-    (p1.translation - p0.translation).length() + omega * radius
+    (*p1 * centre - *p0 * centre).length() + omega * radius
 }
 
 /// A seed on `m`'s features and parameters, with the component of each face, or `ca` / `cb`

@@ -18,7 +18,7 @@
 //! ```
 //!
 //! # Cargo features
-//! - `parallel`: [`World::step_parallel`] answers a world's pairs on rayon's thread pool, with
+//! - `parallel` (default): [`World::step_parallel`] answers a world's pairs on rayon's thread pool, with
 //!   the same answers in the same order as [`World::step`] for any number of threads.
 
 pub mod coherence;

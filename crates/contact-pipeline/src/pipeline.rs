@@ -8,6 +8,7 @@ use exact_refine::{NewtonRefiner, RefinedContact, Refiner};
 use geom_param::{
     ComponentId, DPose3, LoadError, MeshOptions, ObjectDescription, ObjectModel, Seed,
 };
+use glam::DVec3;
 use mesh_narrowphase::{
     ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshVerdict, RegionProbes,
 };
@@ -22,8 +23,11 @@ pub struct PreparedObject<B: BroadPhase = HybridBvh, M: MeshPhase = MeshNarrowph
     pub tree: B::Tree,
     /// Stage 2's per-object data.
     pub mesh: M::Prepared,
-    /// Radius (mm) of a ball about the object's origin that holds its exact surface: the
-    /// largest distance of a mesh vertex from the origin plus the largest chordal error.
+    /// Centre (object frame, mm) of a ball holding the exact surface: the centre of the
+    /// meshes' vertex box.
+    pub bounding_centre: DVec3,
+    /// Radius (mm) of that ball: the largest distance of a mesh vertex from the centre plus
+    /// the largest chordal error.
     pub bounding_radius: f64,
 }
 
@@ -128,11 +132,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     pub fn prepare(&self, model: ObjectModel) -> PreparedObject<B, M> {
         let tree = self.broad.build(&model, self.options.margin);
         let mesh = self.mesh.prepare(&model);
-        let bounding_radius = bounding_radius(&model);
+        let (bounding_centre, bounding_radius) = bounding_ball(&model);
         PreparedObject {
             model,
             tree,
             mesh,
+            bounding_centre,
             bounding_radius,
         }
     }
@@ -427,17 +432,30 @@ impl FullQueryRecord {
     }
 }
 
-/// The largest distance of a mesh vertex from the object's origin plus the largest chordal
-/// error (mm): every exact surface point lies within it.
-fn bounding_radius(model: &ObjectModel) -> f64 {
-    let (mut reach, mut chordal) = (0.0_f64, 0.0_f64);
+/// A ball holding every exact surface point: the centre of the meshes' vertex box, and the
+/// largest distance of a vertex from it plus the largest chordal error (mm). A model without
+/// mesh vertices gets the origin and radius 0.
+fn bounding_ball(model: &ObjectModel) -> (DVec3, f64) {
+    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    let mut chordal = 0.0_f64;
     for mesh in &model.meshes {
         chordal = chordal.max(mesh.chordal_error);
         for p in &mesh.positions {
-            reach = reach.max(p.length());
+            lo = lo.min(*p);
+            hi = hi.max(*p);
         }
     }
-    reach + chordal
+    if lo.x > hi.x {
+        return (DVec3::ZERO, 0.0);
+    }
+    let centre = 0.5 * (lo + hi);
+    let reach = model
+        .meshes
+        .iter()
+        .flat_map(|m| &m.positions)
+        .map(|p| p.distance(centre))
+        .fold(0.0, f64::max);
+    (centre, reach + chordal)
 }
 
 /// Appends one mesh query's seeds to `seeds` and its region probes to `probes`, with the
