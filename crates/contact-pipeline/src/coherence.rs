@@ -107,7 +107,8 @@ impl Default for CoherenceOptions {
 }
 
 /// A contact's identity across frames: equal ids in two frames of one [`PairCache`] mean the
-/// same persisting contact (a physics solver carries its impulse over).
+/// same persisting contact (a physics solver carries its impulse over). Ids are numbered per
+/// cache, that is per pair (from 1): key them by the pair and the id together.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct ContactId(pub u64);
 
@@ -552,5 +553,54 @@ fn assign_full_ids(
             .filter(|(c, _)| c.point_a.distance(point_a) <= 1e-6 * (1.0 + point_a.length()))
             .map(|(_, &id)| id)
             .next();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::motion_bound;
+    use geom_param::{DPose3, DQuat, DVec3};
+
+    /// The bound covers the straight displacement of every point of the ball (sampled densely
+    /// on its sphere, where the largest displacement lies), and equals the closed forms of a
+    /// pure translation and a pure turn about the centre.
+    #[test]
+    fn motion_bound_covers_every_point_of_the_ball() {
+        let centre = DVec3::new(3.0, -2.0, 40.0);
+        let radius = 25.0;
+        let p0 = DPose3::from_parts(
+            DVec3::new(10.0, 5.0, -3.0),
+            DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -0.2, 1.1),
+        );
+        let shift = DVec3::new(0.01, -0.02, 0.005);
+        let translated = DPose3::from_parts(p0.translation + shift, p0.rotation);
+        let tolerance = 1e-12 * radius;
+        assert!(
+            (motion_bound(&p0, &translated, (centre, radius)) - shift.length()).abs() < tolerance
+        );
+        let angle = 1e-3;
+        let turn = DQuat::from_axis_angle(DVec3::new(1.0, 2.0, 2.0) / 3.0, angle);
+        let c_world = p0 * centre;
+        let turned = DPose3::from_parts(c_world - turn * c_world, turn) * p0;
+        assert!((motion_bound(&p0, &turned, (centre, radius)) - angle * radius).abs() < 1e-9);
+        for p1 in [translated, turned, DPose3::from_parts(shift, turn) * p0] {
+            let bound = motion_bound(&p0, &p1, (centre, radius));
+            for i in 0..40 {
+                for j in 0..80 {
+                    let (theta, phi) = (
+                        std::f64::consts::PI * (i as f64 + 0.5) / 40.0,
+                        std::f64::consts::TAU * j as f64 / 80.0,
+                    );
+                    let x = centre
+                        + radius
+                            * DVec3::new(
+                                theta.sin() * phi.cos(),
+                                theta.sin() * phi.sin(),
+                                theta.cos(),
+                            );
+                    assert!((p1 * x).distance(p0 * x) <= bound + tolerance);
+                }
+            }
+        }
     }
 }
