@@ -8,6 +8,7 @@ pub mod rng;
 pub mod scenes;
 pub mod settle;
 pub mod soak;
+pub mod world_scene;
 
 use geom_param::{MeshOptions, ObjectFile};
 use std::path::{Path, PathBuf};
@@ -54,6 +55,8 @@ pub fn generate_fixtures() -> Result<Vec<(PathBuf, String)>, String> {
     for (name, contents) in scenes::generate_scenes(&objects)? {
         files.push((Path::new("fixtures/scenes").join(name), contents));
     }
+    let (name, contents) = world_scene::generate_world_scene(&objects)?;
+    files.push((Path::new("fixtures/worlds").join(name), contents));
     Ok(files)
 }
 

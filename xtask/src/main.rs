@@ -1,6 +1,7 @@
 //! Project automation. `cargo xtask fixtures` writes `fixtures/`; `cargo xtask report` measures
 //! and writes `docs/REPORT.md` with its figures (see `xtask::report`); `cargo xtask stage2`
-//! prints the report's table of Stage 2's two paths alone; `cargo xtask soak N` runs the random
+//! prints the report's table of Stage 2's two paths alone; `cargo xtask world` prints the table
+//! of many-object worlds (see `xtask::world_scene`); `cargo xtask soak N` runs the random
 //! near-contact soak (see `xtask::soak`).
 
 use std::path::{Path, PathBuf};
@@ -13,6 +14,7 @@ use xtask::soak::table::{render, totals};
 const USAGE: &str = "usage: cargo xtask fixtures\n       \
 cargo xtask report [--quick] [--out DIR]\n       \
 cargo xtask stage2 [REPETITIONS]\n       \
+cargo xtask world [STEPS]\n       \
 cargo xtask soak N [--seed S] [--pairs a-b,c-d,...] [--general]\n       \
 cargo xtask soak --replay a-b:SEED";
 
@@ -121,6 +123,19 @@ fn soak(args: &[String]) -> Result<bool, String> {
     Ok(total.failure_count() == 0)
 }
 
+/// Prints the table of worlds of 10, 100 and 1000 objects (markdown; see
+/// `xtask::world_scene::world_table`).
+fn world(args: &[String]) -> Result<(), String> {
+    let steps = match args.first() {
+        Some(n) => n.parse().map_err(|e| format!("bad steps `{n}`: {e}"))?,
+        None => 20,
+    };
+    let table =
+        xtask::world_scene::world_table(&xtask::fixture_objects(), &[10, 100, 1000], steps)?;
+    print!("{table}");
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
@@ -128,6 +143,7 @@ fn main() -> ExitCode {
         Some("report") => report(&args[1..]).map(|()| true),
         Some("soak") => soak(&args[1..]),
         Some("stage2") => stage2(&args[1..]).map(|()| true),
+        Some("world") => world(&args[1..]).map(|()| true),
         _ => Err(USAGE.to_string()),
     };
     match result {

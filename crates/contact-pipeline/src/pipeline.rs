@@ -24,6 +24,12 @@ pub struct PreparedObject<B: BroadPhase = HybridBvh, M: MeshPhase = MeshNarrowph
     pub tree: B::Tree,
     /// Stage 2's per-object data.
     pub mesh: M::Prepared,
+    /// Centre (object frame, mm) of a ball holding the exact surface: the centre of the
+    /// meshes' vertex box.
+    pub bounding_centre: DVec3,
+    /// Radius (mm) of that ball: the largest distance of a mesh vertex from the centre plus
+    /// the largest chordal error.
+    pub bounding_radius: f64,
 }
 
 /// Caller-owned working memory of queries: pass the same one to every query of a thread so
@@ -53,6 +59,13 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> Default for QueryScratch<B, M, R> 
             seeds: Vec::new(),
             probes: Vec::new(),
         }
+    }
+}
+
+impl<B: BroadPhase, M: MeshPhase, R: Refiner> QueryScratch<B, M, R> {
+    /// Stage 3's part, for warm frames that refine without Stages 1-2.
+    pub(crate) fn refine_scratch(&mut self) -> &mut R::Scratch {
+        &mut self.refine
     }
 }
 
@@ -120,7 +133,14 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     pub fn prepare(&self, model: ObjectModel) -> PreparedObject<B, M> {
         let tree = self.broad.build(&model, self.options.margin);
         let mesh = self.mesh.prepare(&model);
-        PreparedObject { model, tree, mesh }
+        let (bounding_centre, bounding_radius) = bounding_ball(&model);
+        PreparedObject {
+            model,
+            tree,
+            mesh,
+            bounding_centre,
+            bounding_radius,
+        }
     }
 
     /// Validates, builds (at the options' chordal tolerance) and preprocesses an object.
@@ -169,7 +189,28 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         scratch: &mut QueryScratch<B, M, R>,
         report: &mut PairReport,
     ) -> Result<(), QueryError> {
+        self.query_recorded(a, pose_a, b, pose_b, scratch, report, None)
+    }
+
+    /// As [`Self::query_into`]; with `record`, Stage 2 runs with the band widened to
+    /// `delta2 + record.slack` and every refined local minimum in `[delta1, delta2 + slack]`
+    /// is also noted in `record` (A's frame) for [`crate::coherence`]. The report itself holds
+    /// the contacts inside the band only, as without `record`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn query_recorded(
+        &self,
+        a: &PreparedObject<B, M>,
+        pose_a: &DPose3,
+        b: &PreparedObject<B, M>,
+        pose_b: &DPose3,
+        scratch: &mut QueryScratch<B, M, R>,
+        report: &mut PairReport,
+        mut record: Option<&mut FullQueryRecord>,
+    ) -> Result<(), QueryError> {
         report.clear();
+        if let Some(record) = record.as_deref_mut() {
+            record.minima.clear();
+        }
         // Rotations within 1e-6 of unit are accepted and normalised, so that no output is
         // scaled by |q|².
         let pose_a = &check_pose(pose_a, "a")?;
@@ -198,7 +239,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let band = ContactBand {
             margin: options.margin,
             delta1: options.delta1,
-            delta2: options.delta2,
+            delta2: options.delta2 + record.as_deref().map_or(0.0, |r| r.slack),
         };
         scratch.seeds.clear();
         scratch.probes.clear();
@@ -274,6 +315,9 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             report.stats.refined += 1;
             unconverged_below |=
                 refined.distance < options.delta1 && !refined.diagnostics.converged;
+            if let Some(record) = record.as_deref_mut() {
+                record.note(&refined, seed, options.delta1, options.delta2, scale);
+            }
             if self.take(&refined, (a, b, &pose_ab), pose_a, scale, report) {
                 break;
             }
@@ -297,6 +341,9 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 report.stats.refined += 1;
                 unconverged_below |=
                     refined.distance < options.delta1 && !refined.diagnostics.converged;
+                if let Some(record) = record.as_deref_mut() {
+                    record.note(&refined, end, options.delta1, options.delta2, scale);
+                }
                 if self.take(&refined, (a, b, &pose_ab), pose_a, scale, report) {
                     break;
                 }
@@ -416,6 +463,70 @@ impl<B: BroadPhase, M: MeshPhase> NearestBoundary for MeshBoundary<'_, B, M> {
     }
 }
 
+/// What a full query notes for [`crate::coherence`]: the band's widening and every distinct
+/// refined local minimum in `[delta1, delta2 + slack]`, in refinement order, in A's frame,
+/// with the components of the seed it came from.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FullQueryRecord {
+    /// Widening of the band's upper end (mm), >= 0.
+    pub slack: f64,
+    /// The minima, each once (merged as contacts are).
+    pub minima: Vec<(RefinedContact, ComponentId, ComponentId)>,
+}
+
+impl FullQueryRecord {
+    /// Notes `refined` (from `seed`) when it is a local minimum in the widened band and not the
+    /// same minimum as one already noted (points within [`merge_tolerance`]).
+    fn note(
+        &mut self,
+        refined: &RefinedContact,
+        seed: &Seed,
+        delta1: f64,
+        delta2: f64,
+        scale: f64,
+    ) {
+        let d = refined.distance;
+        if !(refined.diagnostics.is_local_minimum && d >= delta1 && d <= delta2 + self.slack) {
+            return;
+        }
+        let tolerance = merge_tolerance(refined, scale);
+        let same = self.minima.iter().any(|(m, _, _)| {
+            m.point_a.distance(refined.point_a) <= tolerance
+                && m.point_b.distance(refined.point_b) <= tolerance
+        });
+        if !same {
+            self.minima
+                .push((*refined, seed.a.component, seed.b.component));
+        }
+    }
+}
+
+/// A ball holding every exact surface point: the centre of the meshes' vertex box, and the
+/// largest distance of a vertex from it plus the largest chordal error (mm). A model without
+/// mesh vertices gets the origin and radius 0.
+fn bounding_ball(model: &ObjectModel) -> (DVec3, f64) {
+    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    let mut chordal = 0.0_f64;
+    for mesh in &model.meshes {
+        chordal = chordal.max(mesh.chordal_error);
+        for p in &mesh.positions {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+    }
+    if lo.x > hi.x {
+        return (DVec3::ZERO, 0.0);
+    }
+    let centre = 0.5 * (lo + hi);
+    let reach = model
+        .meshes
+        .iter()
+        .flat_map(|m| &m.positions)
+        .map(|p| p.distance(centre))
+        .fold(0.0, f64::max);
+    (centre, reach + chordal)
+}
+
 /// Appends one mesh query's seeds to `seeds` and its region probes to `probes`, with the
 /// probes' centre-seed indices moved to the seeds' new positions.
 fn take_seeds(out: &MeshOutput, seeds: &mut Vec<Seed>, probes: &mut Vec<RegionProbes>) {
@@ -473,9 +584,12 @@ pub enum QueryError {
     /// The mesh phase refused the pair (prepared data from another pipeline, for instance).
     #[error("mesh phase refused the pair: {0}")]
     MeshPhase(String),
+    /// Coherence options that cannot work (see [`crate::CoherenceOptions`]).
+    #[error("bad coherence options: {0}")]
+    BadCoherence(String),
 }
 
-fn check_pose(pose: &DPose3, object: &'static str) -> Result<DPose3, QueryError> {
+pub(crate) fn check_pose(pose: &DPose3, object: &'static str) -> Result<DPose3, QueryError> {
     let q = pose.rotation;
     if !(q.is_finite() && pose.translation.is_finite()) {
         return Err(QueryError::BadPose {
@@ -498,11 +612,11 @@ fn check_pose(pose: &DPose3, object: &'static str) -> Result<DPose3, QueryError>
 
 /// Two refined seeds are the same minimum when their points agree to this distance (mm): far
 /// above the solver's point accuracy, far below any two distinct minima of the fixtures.
-fn merge_tolerance(refined: &RefinedContact, scale: f64) -> f64 {
+pub(crate) fn merge_tolerance(refined: &RefinedContact, scale: f64) -> f64 {
     (1e-6 * scale).max(100.0 * refined.diagnostics.point_error_estimate)
 }
 
-fn to_world(refined: &RefinedContact, pose_a: &DPose3) -> Contact {
+pub(crate) fn to_world(refined: &RefinedContact, pose_a: &DPose3) -> Contact {
     Contact {
         point_a: *pose_a * refined.point_a,
         point_b: *pose_a * refined.point_b,
@@ -514,6 +628,6 @@ fn to_world(refined: &RefinedContact, pose_a: &DPose3) -> Contact {
     }
 }
 
-fn micros(start: Instant) -> f64 {
+pub(crate) fn micros(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e6
 }

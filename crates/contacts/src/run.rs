@@ -2,11 +2,19 @@
 
 use crate::output::{pair_json, state_name};
 use crate::scene::{Scene, SceneError};
-use contact_pipeline::{ContactPipeline, PairReport, PreparedObject, QueryError, QueryScratch};
+use contact_pipeline::{
+    ContactPipeline, Groups, PairReport, PreparedObject, QueryError, QueryScratch, World,
+    WorldError,
+};
 use geom_param::MeshOptions;
 use serde_json::{Value, json};
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Instant;
+
+/// Scenes with more objects than this are queried through a [`World`] (broad phase across
+/// objects): only pairs whose inflated boxes overlap are listed, in the same order and format.
+pub const WORLD_OBJECTS: usize = 16;
 
 /// A scene with its pipeline and prepared objects.
 pub struct PreparedScene {
@@ -14,8 +22,8 @@ pub struct PreparedScene {
     pub scene: Scene,
     /// The pipeline built from the scene's options.
     pub pipeline: ContactPipeline,
-    /// Prepared objects, in scene order.
-    pub objects: Vec<PreparedObject>,
+    /// Prepared objects, in scene order; objects with equal descriptions share one.
+    pub objects: Vec<Arc<PreparedObject>>,
 }
 
 /// Reads and prepares a scene.
@@ -40,22 +48,28 @@ pub fn prepare_scene_text(text: &str) -> Result<PreparedScene, SceneError> {
 
 fn prepare(scene: Scene) -> Result<PreparedScene, SceneError> {
     let pipeline = ContactPipeline::new(scene.options)?;
-    let objects = scene
-        .objects
-        .iter()
-        .enumerate()
-        .map(|(i, o)| {
-            o.description
-                .build(&MeshOptions {
-                    chordal_tolerance: pipeline.options().chordal_tolerance,
-                })
-                .map(|model| pipeline.prepare(model))
-                .map_err(|source| SceneError::Object {
-                    at: format!("objects[{i}] ({})", o.name),
-                    source,
-                })
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut objects: Vec<Arc<PreparedObject>> = Vec::with_capacity(scene.objects.len());
+    for (i, o) in scene.objects.iter().enumerate() {
+        // Instances of one description share its preparation.
+        if let Some(k) = scene.objects[..i]
+            .iter()
+            .position(|p| p.description == o.description)
+        {
+            objects.push(Arc::clone(&objects[k]));
+            continue;
+        }
+        let prepared = o
+            .description
+            .build(&MeshOptions {
+                chordal_tolerance: pipeline.options().chordal_tolerance,
+            })
+            .map(|model| pipeline.prepare(model))
+            .map_err(|source| SceneError::Object {
+                at: format!("objects[{i}] ({})", o.name),
+                source,
+            })?;
+        objects.push(Arc::new(prepared));
+    }
     Ok(PreparedScene {
         scene,
         pipeline,
@@ -92,11 +106,15 @@ impl PreparedScene {
         )
     }
 
-    /// `contacts query`: every pair's result.
+    /// `contacts query`: every pair's result; for scenes of more than [`WORLD_OBJECTS`]
+    /// objects, every pair in range of the world's broad phase (the others are separated).
     ///
     /// # Errors
     /// [`QueryError`] if a stage refuses a pair.
     pub fn query_json(&self) -> Result<Value, QueryError> {
+        if self.objects.len() > WORLD_OBJECTS {
+            return self.query_world_json();
+        }
         let mut scratch = QueryScratch::default();
         let pairs = self
             .pairs()
@@ -110,6 +128,37 @@ impl PreparedScene {
                 ))
             })
             .collect::<Result<Vec<Value>, QueryError>>()?;
+        Ok(json!({ "pairs": pairs }))
+    }
+
+    /// `contacts query` through a [`World`]: one step, pairs in range in scene order.
+    fn query_world_json(&self) -> Result<Value, QueryError> {
+        let pipeline = ContactPipeline::new(*self.pipeline.options()).map_err(|e| {
+            QueryError::MeshPhase(format!("options accepted once are refused now: {e}"))
+        })?;
+        let mut world = World::new(pipeline, None);
+        let world_error = |e: WorldError| match e {
+            WorldError::BadPose { source, .. } | WorldError::Query { source, .. } => source,
+            other => QueryError::MeshPhase(other.to_string()),
+        };
+        for (prepared, o) in self.objects.iter().zip(&self.scene.objects) {
+            world
+                .insert(Arc::clone(prepared), o.pose, Groups::default())
+                .map_err(world_error)?;
+        }
+        world.step_parallel().map_err(world_error)?;
+        // Inserted in scene order into an empty world: slot index = scene index.
+        let pairs = world
+            .all_pairs()
+            .map(|p| {
+                let (i, j) = (p.a.index as usize, p.b.index as usize);
+                pair_json(
+                    &self.scene.objects[i].name,
+                    &self.scene.objects[j].name,
+                    p.report,
+                )
+            })
+            .collect::<Vec<Value>>();
         Ok(json!({ "pairs": pairs }))
     }
 
