@@ -59,6 +59,8 @@ pub use curves::nurbs_curve2::NurbsCurve2;
 pub use geometry_error::GeometryError;
 pub use io::object_description::{LoadError, ObjectDescription};
 pub use io::object_file::{ObjectFile, ObjectFileError};
+#[cfg(feature = "step")]
+pub use io::solid_description::StepSolidRef;
 pub use io::solid_description::{SolidDescription, SolidLoadError, SolidSpec};
 pub use nurbs::MAX_DEGREE;
 pub use nurbs::basis::{BSplineBasis, BasisDerivatives};

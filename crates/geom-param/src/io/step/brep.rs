@@ -149,6 +149,24 @@ pub(crate) fn read_solid_unvalidated(graph: &Graph<'_>, root: u64) -> Solid {
     read_solid(graph, root).expect("read").solid
 }
 
+/// What every loop fit of one face shares.
+struct LoopContext<'s> {
+    face: u64,
+    surface: &'s dyn Surface,
+    guess: &'s dyn Fn(DVec3) -> Option<[f64; 2]>,
+    periods: [f64; 2],
+}
+
+/// One loop's p-curves.
+struct FittedLoop {
+    entries: Vec<(usize, bool, Box<dyn crate::Curve2>)>,
+    /// Whole periods between the loop's end and its start in (u, v) (0 for a loop that
+    /// closes in the parameter plane).
+    wrap: [i32; 2],
+    /// Twice the signed area of the loop in (u, v), sampled.
+    area: f64,
+}
+
 /// A face read but not yet built: its surface, sense and loops of (edge index, reversed).
 struct PendingFace<'a> {
     entity: Entity<'a>,
@@ -162,7 +180,10 @@ impl<'g, 'a> Builder<'g, 'a> {
         if let Some(p) = self.vertices.get(&id) {
             return Ok(*p);
         }
-        let v = self.reader.graph.get_as(from, id, "VERTEX_POINT", "an edge's vertex")?;
+        let v = self
+            .reader
+            .graph
+            .get_as(from, id, "VERTEX_POINT", "an edge's vertex")?;
         let p = self.reader.point(&v, v.reference(1)?)?;
         self.vertices.insert(id, p);
         Ok(p)
@@ -172,7 +193,10 @@ impl<'g, 'a> Builder<'g, 'a> {
         if let Some(&i) = self.edge_index.get(&id) {
             return Ok(i);
         }
-        let e = self.reader.graph.get_as(from, id, "EDGE_CURVE", "an oriented edge's edge")?;
+        let e = self
+            .reader
+            .graph
+            .get_as(from, id, "EDGE_CURVE", "an oriented edge's edge")?;
         let (v1, v2) = (e.reference(1)?, e.reference(2)?);
         let (p1, p2) = (self.vertex(&e, v1)?, self.vertex(&e, v2)?);
         let spec = self.reader.curve(&e, e.reference(3)?)?;
@@ -193,10 +217,20 @@ impl<'g, 'a> Builder<'g, 'a> {
                 (t1, t2)
             }
             CurveSpec::Nurbs(_) => {
-                let natural = spec.build(spec.natural_domain().ok_or_else(|| e.malformed("empty knot vector"))?, 1.0).map_err(|g| e.geometry(g))?;
+                let natural = spec
+                    .build(
+                        spec.natural_domain()
+                            .ok_or_else(|| e.malformed("empty knot vector"))?,
+                        1.0,
+                    )
+                    .map_err(|g| e.geometry(g))?;
                 let d = natural.domain();
                 if closed {
-                    if sense > 0.0 { (d.min, d.max) } else { (-d.max, -d.min) }
+                    if sense > 0.0 {
+                        (d.min, d.max)
+                    } else {
+                        (-d.max, -d.min)
+                    }
                 } else {
                     let a = nearest_param(natural.as_ref(), p1);
                     let b = nearest_param(natural.as_ref(), p2);
@@ -209,10 +243,14 @@ impl<'g, 'a> Builder<'g, 'a> {
                 "its vertices are not in the order of its curve (parameters {t1} and {t2})"
             )));
         }
-        let curve = spec.build(range(t1, t2), sense).map_err(|g| e.geometry(g))?;
+        let curve = spec
+            .build(range(t1, t2), sense)
+            .map_err(|g| e.geometry(g))?;
         for (p, t) in [(p1, t1), (p2, t2)] {
             let gap = curve.eval(t).point.distance(p);
-            self.worst_gap = self.worst_gap.max(if gap.is_nan() { f64::INFINITY } else { gap });
+            self.worst_gap = self
+                .worst_gap
+                .max(if gap.is_nan() { f64::INFINITY } else { gap });
         }
         self.edges.push(EdgeRecord {
             step_id: id,
@@ -245,7 +283,10 @@ impl<'g, 'a> Builder<'g, 'a> {
                 .part("FACE_OUTER_BOUND")
                 .or_else(|| bound.record.part("FACE_BOUND"))
                 .ok_or_else(|| bound.unsupported("a face bound"))?;
-            let bound = Entity { params: bp, ..bound };
+            let bound = Entity {
+                params: bp,
+                ..bound
+            };
             let orientation = bound.boolean(2)? != flip;
             let l = graph.get(&bound, bound.reference(1)?)?;
             if l.record.parts.len() != 1 || l.record.parts[0].0 != "EDGE_LOOP" {
@@ -279,7 +320,11 @@ impl<'g, 'a> Builder<'g, 'a> {
         })
     }
 
-    fn make_surface(spec: &SurfaceSpec, sense: bool, domain: [ParamRange; 2]) -> Result<Box<dyn Surface>, crate::GeometryError> {
+    fn make_surface(
+        spec: &SurfaceSpec,
+        sense: bool,
+        domain: [ParamRange; 2],
+    ) -> Result<Box<dyn Surface>, crate::GeometryError> {
         // A reversed surface runs v backwards: its free v range is the negated one.
         let inner_domain = if sense {
             domain
@@ -287,123 +332,78 @@ impl<'g, 'a> Builder<'g, 'a> {
             [domain[0], range(-domain[1].max, -domain[1].min)]
         };
         let s = spec.build(inner_domain)?;
-        Ok(if sense { s } else { Box::new(ReversedSurface { inner: s }) })
+        Ok(if sense {
+            s
+        } else {
+            Box::new(ReversedSurface { inner: s })
+        })
     }
 
-    fn build_face(&mut self, p: PendingFace<'a>, face_id: FaceId, big: f64) -> Result<Face, StepError> {
+    fn build_face(
+        &mut self,
+        p: PendingFace<'a>,
+        face_id: FaceId,
+        big: f64,
+    ) -> Result<Face, StepError> {
         let f = p.entity;
         let free = p.surface.free();
         let periodic = p.surface.periodic();
         let provisional = [range(-big, big), range(-big, big)];
-        let surface = Self::make_surface(&p.surface, p.sense, provisional).map_err(|g| f.geometry(g))?;
+        let surface =
+            Self::make_surface(&p.surface, p.sense, provisional).map_err(|g| f.geometry(g))?;
         let spec = p.surface.clone();
         let sense = p.sense;
         let guess = move |q: DVec3| {
-            spec.guess(q).map(|[u, v]| if sense { [u, v] } else { [u, -v] })
+            spec.guess(q)
+                .map(|[u, v]| if sense { [u, v] } else { [u, -v] })
         };
         let domain = surface.domain();
-        let periods = [0, 1].map(|i| if domain[i].periodic { domain[i].span() } else { 0.0 });
+        let periods = [0, 1].map(|i| {
+            if domain[i].periodic {
+                domain[i].span()
+            } else {
+                0.0
+            }
+        });
         let mut fitted_loops: Vec<Vec<(usize, bool, Box<dyn crate::Curve2>)>> = Vec::new();
         let mut areas = Vec::new();
+        // Loops that wrap once around a periodic u: (loop id, entries, wrap sign).
+        let mut wrapping: Vec<(u64, Vec<(usize, bool, u64)>, f64)> = Vec::new();
+        let fit_ctx = LoopContext {
+            face: f.id,
+            surface: surface.as_ref(),
+            guess: &guess,
+            periods,
+        };
         for (loop_id, entries) in &p.loops {
-            let mut fitted = Vec::with_capacity(entries.len());
-            let mut previous_end: Option<DVec2> = None;
-            let mut first_start: Option<DVec2> = None;
-            for (k, &(edge, reversed, oe)) in entries.iter().enumerate() {
-                let snap_end = if k + 1 == entries.len() { first_start } else { None };
-                let curve = self.edges[edge].curve.as_ref();
-                let input = FitInput {
-                    surface: surface.as_ref(),
-                    guess: &guess,
-                    curve,
-                    reversed,
-                    previous_end,
-                    tolerance: self.fit_tolerance,
-                    snap_end,
-                };
-                let pc = fit(&input).map_err(|reason| StepError::PCurve {
-                    face: f.id,
-                    edge: self.edges[edge].step_id,
-                    tolerance: self.fit_tolerance,
-                    reason,
-                })?;
-                if pc.gap > MAX_HEAL_FACTOR * self.uncertainty {
-                    return Err(StepError::EdgeOffFace {
-                        face: f.id,
-                        edge: self.edges[edge].step_id,
-                        gap: pc.gap,
-                        limit: MAX_HEAL_FACTOR * self.uncertainty,
-                    });
+            let fitted = self.fit_loop(&fit_ctx, *loop_id, entries)?;
+            match fitted.wrap {
+                [0, 0] => {
+                    areas.push(fitted.area);
+                    fitted_loops.push(fitted.entries);
                 }
-                self.worst_gap = self.worst_gap.max(pc.gap + pc.fit_error);
-                let d = pc.curve.domain();
-                let (start_t, end_t) = if reversed { (d.max, d.min) } else { (d.min, d.max) };
-                let start = pc.curve.eval(start_t).point;
-                let end = pc.curve.eval(end_t).point;
-                if let Some(prev) = previous_end {
-                    let on = |uv: DVec2| surface.eval(domain[0].normalize(uv.x), domain[1].normalize(uv.y)).point;
-                    let gap = on(prev).distance(on(start));
-                    if gap > MAX_HEAL_FACTOR * self.uncertainty || gap.is_nan() {
-                        return Err(StepError::LoopNotClosed {
-                            id: *loop_id,
-                            after: oe,
-                            gap,
-                            tolerance: self.uncertainty,
-                        });
-                    }
-                    self.worst_gap = self.worst_gap.max(gap);
-                }
-                first_start.get_or_insert(start);
-                previous_end = Some(end);
-                fitted.push((edge, reversed, pc.curve));
-            }
-            // The loop must come back to its start in (u, v), not one period further.
-            if let (Some(a), Some(b)) = (first_start, previous_end) {
-                let diff = a - b;
-                for i in 0..2 {
-                    if periods[i] > 0.0 && diff[i].abs() > 0.5 * periods[i] {
-                        return Err(StepError::Unsupported {
-                            id: *loop_id,
-                            entity: "EDGE_LOOP".into(),
-                            role: "a loop around a closed surface without a seam edge (the face's trim must close in its parameter plane)",
-                        });
-                    }
-                }
-                let on = |uv: DVec2| surface.eval(domain[0].normalize(uv.x), domain[1].normalize(uv.y)).point;
-                let gap = on(a).distance(on(b));
-                let uv_gap = diff.length();
-                if gap > MAX_HEAL_FACTOR * self.uncertainty || gap.is_nan() {
-                    return Err(StepError::LoopNotClosed {
-                        id: *loop_id,
-                        after: entries.last().map_or(0, |e| e.2),
-                        gap,
-                        tolerance: self.uncertainty,
-                    });
-                }
-                if uv_gap > 1e-6 * (1.0 + a.length()) && gap <= self.uncertainty {
-                    // Closed in space but not in (u, v): the loop passes a pole.
+                [w, 0] if w.abs() == 1 => wrapping.push((*loop_id, entries.clone(), f64::from(w))),
+                _ => {
                     return Err(StepError::Unsupported {
                         id: *loop_id,
                         entity: "EDGE_LOOP".into(),
-                        role: "a loop through a pole of its surface (a degenerate edge is not supported yet)",
+                        role: "a loop that wraps around a closed surface's v or more than once",
                     });
                 }
             }
-            let mut area = 0.0;
-            for (_, reversed, c) in &fitted {
-                let d = c.domain();
-                let n = 32;
-                let mut prev = c.eval(if *reversed { d.max } else { d.min }).point;
-                for k in 1..=n {
-                    let s = k as f64 / n as f64;
-                    let t = if *reversed { d.max - s * d.span() } else { d.min + s * d.span() };
-                    let q = c.eval(t).point;
-                    area += prev.perp_dot(q);
-                    prev = q;
-                }
+        }
+        if !wrapping.is_empty() {
+            let merged = self.merge_wrapping(&f, &p.surface, wrapping)?;
+            let fitted = self.fit_loop(&fit_ctx, merged.0, &merged.1)?;
+            if fitted.wrap != [0, 0] {
+                return Err(StepError::Unsupported {
+                    id: merged.0,
+                    entity: "EDGE_LOOP".into(),
+                    role: "a pair of loops around a closed surface that a seam cannot join",
+                });
             }
-            areas.push(area);
-            fitted_loops.push(fitted);
+            areas.push(fitted.area);
+            fitted_loops.push(fitted.entries);
         }
         // The outer loop: the counter-clockwise one of largest area, first.
         let outer = (0..areas.len())
@@ -427,10 +427,14 @@ impl<'g, 'a> Builder<'g, 'a> {
         let mut final_domain = provisional;
         for i in 0..2 {
             if free[i] {
-                final_domain[i] = range(lo[i] - DOMAIN_MARGIN * span[i], hi[i] + DOMAIN_MARGIN * span[i]);
+                final_domain[i] = range(
+                    lo[i] - DOMAIN_MARGIN * span[i],
+                    hi[i] + DOMAIN_MARGIN * span[i],
+                );
             }
         }
-        let surface = Self::make_surface(&p.surface, p.sense, final_domain).map_err(|g| f.geometry(g))?;
+        let surface =
+            Self::make_surface(&p.surface, p.sense, final_domain).map_err(|g| f.geometry(g))?;
         let mut loops = Vec::with_capacity(fitted_loops.len());
         for (li, l) in fitted_loops.into_iter().enumerate() {
             let mut entries = Vec::with_capacity(l.len());
@@ -447,13 +451,234 @@ impl<'g, 'a> Builder<'g, 'a> {
             loops.push(TrimLoop::new(entries));
         }
         let domain = surface.domain();
-        let side = |i: usize| if periodic[i] { Boundary::Periodic } else { Boundary::Trimmed };
+        let side = |i: usize| {
+            if periodic[i] {
+                Boundary::Periodic
+            } else {
+                Boundary::Trimmed
+            }
+        };
         Ok(Face {
             surface,
             boundary: [side(0), side(0), side(1), side(1)],
             trim: Some(Trim::new(loops, &domain)),
             convexity: FaceConvexity::Flat,
         })
+    }
+
+    /// Fits the p-curves of one loop, each entry starting where the previous one ended.
+    fn fit_loop(
+        &mut self,
+        ctx: &LoopContext<'_>,
+        loop_id: u64,
+        entries: &[(usize, bool, u64)],
+    ) -> Result<FittedLoop, StepError> {
+        let surface = ctx.surface;
+        let domain = surface.domain();
+        let on = |uv: DVec2| {
+            surface
+                .eval(domain[0].normalize(uv.x), domain[1].normalize(uv.y))
+                .point
+        };
+        let limit = MAX_HEAL_FACTOR * self.uncertainty;
+        let mut fitted = Vec::with_capacity(entries.len());
+        let mut previous_end: Option<DVec2> = None;
+        let mut first_start: Option<DVec2> = None;
+        for (k, &(edge, reversed, oe)) in entries.iter().enumerate() {
+            // The last entry ends where the first began, unless the loop wraps: then the
+            // snap would be a whole period off and is left to the wrap test below.
+            let snap_end = if k + 1 == entries.len() && entries.len() > 1 {
+                first_start
+            } else {
+                None
+            };
+            let input = FitInput {
+                surface,
+                guess: ctx.guess,
+                curve: self.edges[edge].curve.as_ref(),
+                reversed,
+                previous_end,
+                tolerance: self.fit_tolerance,
+                snap_end,
+            };
+            let pc = fit(&input).map_err(|reason| StepError::PCurve {
+                face: ctx.face,
+                edge: self.edges[edge].step_id,
+                tolerance: self.fit_tolerance,
+                reason,
+            })?;
+            if pc.gap > limit || pc.gap.is_nan() {
+                return Err(StepError::EdgeOffFace {
+                    face: ctx.face,
+                    edge: self.edges[edge].step_id,
+                    gap: pc.gap,
+                    limit,
+                });
+            }
+            self.worst_gap = self.worst_gap.max(pc.gap + pc.fit_error);
+            let d = pc.curve.domain();
+            let (start_t, end_t) = if reversed {
+                (d.max, d.min)
+            } else {
+                (d.min, d.max)
+            };
+            let start = pc.curve.eval(start_t).point;
+            let end = pc.curve.eval(end_t).point;
+            if let Some(prev) = previous_end {
+                let gap = on(prev).distance(on(start));
+                if gap > limit || gap.is_nan() {
+                    return Err(StepError::LoopNotClosed {
+                        id: loop_id,
+                        after: entries[k - 1].2,
+                        gap,
+                        tolerance: self.uncertainty,
+                    });
+                }
+                self.worst_gap = self.worst_gap.max(gap);
+            }
+            let _ = oe;
+            first_start.get_or_insert(start);
+            previous_end = Some(end);
+            fitted.push((edge, reversed, pc.curve));
+        }
+        let (Some(a), Some(b)) = (first_start, previous_end) else {
+            return Err(StepError::Malformed {
+                id: loop_id,
+                entity: "EDGE_LOOP".into(),
+                reason: "the loop has no edge".into(),
+            });
+        };
+        let gap = on(a).distance(on(b));
+        if gap > limit || gap.is_nan() {
+            return Err(StepError::LoopNotClosed {
+                id: loop_id,
+                after: entries.last().map_or(0, |e| e.2),
+                gap,
+                tolerance: self.uncertainty,
+            });
+        }
+        self.worst_gap = self.worst_gap.max(gap);
+        let diff = b - a;
+        let mut wrap = [0; 2];
+        let mut residual = diff;
+        for i in 0..2 {
+            if ctx.periods[i] > 0.0 {
+                let w = (diff[i] / ctx.periods[i]).round();
+                wrap[i] = w as i32;
+                residual[i] -= w * ctx.periods[i];
+            }
+        }
+        if residual.length() > 1e-6 * (1.0 + a.length()) {
+            // Closed in space but not in (u, v): the loop passes a pole.
+            return Err(StepError::Unsupported {
+                id: loop_id,
+                entity: "EDGE_LOOP".into(),
+                role: "a loop through a pole of its surface (a degenerate edge is not supported yet)",
+            });
+        }
+        let mut area = 0.0;
+        for (_, reversed, c) in &fitted {
+            let d = c.domain();
+            let n = 32;
+            let mut prev = c.eval(if *reversed { d.max } else { d.min }).point;
+            for k in 1..=n {
+                let s = f64::from(k) / f64::from(n);
+                let t = if *reversed {
+                    d.max - s * d.span()
+                } else {
+                    d.min + s * d.span()
+                };
+                let q = c.eval(t).point;
+                area += prev.perp_dot(q);
+                prev = q;
+            }
+        }
+        Ok(FittedLoop {
+            entries: fitted,
+            wrap,
+            area,
+        })
+    }
+
+    /// Joins two loops that each wrap once around a surface's periodic u (in opposite
+    /// directions: the two ends of a cylinder face an exporter wrote without a seam) by a
+    /// seam edge: a straight ruling from a vertex of the first to a vertex of the second at
+    /// the same u. The merged loop is the first, the seam, the second, the seam backwards.
+    fn merge_wrapping(
+        &mut self,
+        f: &Entity<'_>,
+        spec: &SurfaceSpec,
+        mut wrapping: Vec<(u64, Vec<(usize, bool, u64)>, f64)>,
+    ) -> Result<(u64, Vec<(usize, bool, u64)>), StepError> {
+        let ruled = matches!(spec, SurfaceSpec::Cylinder(..) | SurfaceSpec::Cone(..));
+        if wrapping.len() != 2 || wrapping[0].2 == wrapping[1].2 || !ruled {
+            let id = wrapping[0].0;
+            return Err(StepError::Unsupported {
+                id,
+                entity: "EDGE_LOOP".into(),
+                role: "a loop around a closed surface without a seam edge (joined by a seam only for two opposite loops on a cylinder or cone)",
+            });
+        }
+        // The loop that runs +u first.
+        if wrapping[0].2 < 0.0 {
+            wrapping.swap(0, 1);
+        }
+        let start_vertex = |e: &(usize, bool, u64), edges: &[EdgeRecord]| {
+            let ends = edges[e.0].ends;
+            if e.1 { ends[1] } else { ends[0] }
+        };
+        let (a_id, a_entries, _) = &wrapping[0];
+        let (_, b_entries, _) = &wrapping[1];
+        let va = start_vertex(&a_entries[0], &self.edges);
+        let pa = self.vertices[&va];
+        // The vertex of the second loop on the ruling through pa.
+        let axis_dir = match spec {
+            SurfaceSpec::Cylinder(pl, _) | SurfaceSpec::Cone(pl, ..) => pl,
+            _ => unreachable!("checked ruled above"),
+        };
+        let angle = |p: DVec3| {
+            let l = p - axis_dir.origin;
+            l.dot(axis_dir.y).atan2(l.dot(axis_dir.x))
+        };
+        let ua = angle(pa);
+        let mut best: Option<(f64, usize)> = None;
+        for (k, e) in b_entries.iter().enumerate() {
+            let p = self.vertices[&start_vertex(e, &self.edges)];
+            let mut d = angle(p) - ua;
+            d -= TAU * (d / TAU).round();
+            let d = d.abs() * (p - axis_dir.origin).cross(axis_dir.z).length();
+            if best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, k));
+            }
+        }
+        let (d, k) = best.ok_or_else(|| f.malformed("an empty loop"))?;
+        if d > MAX_HEAL_FACTOR * self.uncertainty {
+            return Err(StepError::Unsupported {
+                id: *a_id,
+                entity: "EDGE_LOOP".into(),
+                role: "a loop around a closed surface without a seam edge, whose partner loop has no vertex on the same ruling",
+            });
+        }
+        let mut b_rot = b_entries[k..].to_vec();
+        b_rot.extend_from_slice(&b_entries[..k]);
+        let vb = start_vertex(&b_rot[0], &self.edges);
+        let pb = self.vertices[&vb];
+        let length = pa.distance(pb);
+        let seam =
+            crate::curves::line_curve::LineCurve::new(pa, (pb - pa) / length, range(0.0, length))
+                .map_err(|g| f.geometry(g))?;
+        self.edges.push(EdgeRecord {
+            step_id: f.id,
+            curve: Box::new(seam),
+            ends: [va, vb],
+            uses: Vec::new(),
+        });
+        let seam = self.edges.len() - 1;
+        let mut merged = a_entries.clone();
+        merged.push((seam, false, f.id));
+        merged.extend(b_rot);
+        merged.push((seam, true, f.id));
+        Ok((*a_id, merged))
     }
 
     fn finish(self, name: String, faces: Vec<Face>) -> Result<StepSolid, StepError> {
@@ -498,7 +723,11 @@ impl<'g, 'a> Builder<'g, 'a> {
             tolerance,
         };
         if std::env::var("STEP_NO_VALIDATE").is_ok() {
-            return Ok(StepSolid { name, id: self.solid_id, solid });
+            return Ok(StepSolid {
+                name,
+                id: self.solid_id,
+                solid,
+            });
         }
         validate(&solid).map_err(|source| StepError::Topology {
             id: self.solid_id,

@@ -125,7 +125,9 @@ pub enum StepError {
         count: usize,
     },
     /// Consecutive edges of a loop do not meet within the model tolerance.
-    #[error("EDGE_LOOP #{id} does not close: a gap of {gap:.3e} mm after ORIENTED_EDGE #{after} (tolerance {tolerance:.1e} mm)")]
+    #[error(
+        "EDGE_LOOP #{id} does not close: a gap of {gap:.3e} mm after ORIENTED_EDGE #{after} (tolerance {tolerance:.1e} mm)"
+    )]
     LoopNotClosed {
         /// The loop's id.
         id: u64,

@@ -8,6 +8,7 @@
 //! reader never copies a file's p-curves: it computes each from the 3D edge on our surface
 //! (module `pcurve`), so a difference in convention cannot misplace a trim.
 
+use crate::GeometryError;
 use crate::curves::circle_curve::CircleCurve;
 use crate::curves::curve::{Curve, CurvePoint, ParamRange};
 use crate::curves::ellipse_curve::EllipseCurve;
@@ -25,7 +26,6 @@ use crate::surfaces::revolution_surface::RevolutionSurface;
 use crate::surfaces::sphere_surface::SphereSurface;
 use crate::surfaces::surface::Surface;
 use crate::surfaces::torus_surface::TorusSurface;
-use crate::GeometryError;
 use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -69,7 +69,11 @@ pub(crate) enum CurveSpec {
     /// C(t) = O + R (cos t x + sin t y).
     Circle { placement: Placement, radius: f64 },
     /// C(t) = O + a cos t x + b sin t y.
-    Ellipse { placement: Placement, a: f64, b: f64 },
+    Ellipse {
+        placement: Placement,
+        a: f64,
+        b: f64,
+    },
     /// A (rational) B-spline curve.
     Nurbs(BSplineData<Vec<DVec3>>),
 }
@@ -142,7 +146,9 @@ impl GeometryReader<'_, '_> {
     /// An AXIS2_PLACEMENT_3D (missing axis: z; missing ref_direction: x, or y when the axis
     /// is along x).
     pub(crate) fn placement(&self, from: &Entity<'_>, id: u64) -> Result<Placement, StepError> {
-        let e = self.graph.get_as(from, id, "AXIS2_PLACEMENT_3D", "a placement")?;
+        let e = self
+            .graph
+            .get_as(from, id, "AXIS2_PLACEMENT_3D", "a placement")?;
         let origin = self.point(&e, e.reference(1)?)?;
         let axis = match e.optional_reference(2)? {
             Some(a) => self.direction(&e, a)?,
@@ -161,7 +167,10 @@ impl GeometryReader<'_, '_> {
         if v.is_finite() && v > 0.0 {
             Ok(v)
         } else {
-            Err(e.geometry(GeometryError::NonPositiveRadius { what: "length", value: v }))
+            Err(e.geometry(GeometryError::NonPositiveRadius {
+                what: "length",
+                value: v,
+            }))
         }
     }
 
@@ -182,7 +191,9 @@ impl GeometryReader<'_, '_> {
             match name {
                 "LINE" => {
                     let origin = self.point(&e, e.reference(1)?)?;
-                    let v = self.graph.get_as(&e, e.reference(2)?, "VECTOR", "a line's vector")?;
+                    let v = self
+                        .graph
+                        .get_as(&e, e.reference(2)?, "VECTOR", "a line's vector")?;
                     let dir = self.direction(&v, v.reference(1)?)?.normalize();
                     let magnitude = v.real(2)? * self.scale;
                     if !(magnitude.is_finite() && magnitude > 0.0) {
@@ -229,7 +240,10 @@ impl GeometryReader<'_, '_> {
             }
         }
         // The complex forms of a B-spline curve.
-        if let (Some(b), Some(k)) = (r.part("B_SPLINE_CURVE"), r.part("B_SPLINE_CURVE_WITH_KNOTS")) {
+        if let (Some(b), Some(k)) = (
+            r.part("B_SPLINE_CURVE"),
+            r.part("B_SPLINE_CURVE_WITH_KNOTS"),
+        ) {
             let be = Entity { params: b, ..e };
             let ke = Entity { params: k, ..e };
             let degree = degree_of(&be, 0)?;
@@ -250,7 +264,10 @@ impl GeometryReader<'_, '_> {
     }
 
     fn points(&self, e: &Entity<'_>, i: usize) -> Result<Vec<DVec3>, StepError> {
-        e.ref_list(i)?.into_iter().map(|p| self.point(e, p)).collect()
+        e.ref_list(i)?
+            .into_iter()
+            .map(|p| self.point(e, p))
+            .collect()
     }
 
     /// The surface of entity `id` (a RECTANGULAR_TRIMMED_SURFACE by its basis surface: the
@@ -275,7 +292,9 @@ impl GeometryReader<'_, '_> {
                 }
                 "SURFACE_OF_LINEAR_EXTRUSION" => {
                     let curve = self.curve(&e, e.reference(1)?)?;
-                    let v = self.graph.get_as(&e, e.reference(2)?, "VECTOR", "an extrusion axis")?;
+                    let v =
+                        self.graph
+                            .get_as(&e, e.reference(2)?, "VECTOR", "an extrusion axis")?;
                     let dir = self.direction(&v, v.reference(1)?)?.normalize();
                     let magnitude = v.real(2)? * self.scale;
                     if !(magnitude.is_finite() && magnitude > 0.0) {
@@ -285,7 +304,9 @@ impl GeometryReader<'_, '_> {
                 }
                 "SURFACE_OF_REVOLUTION" => {
                     let curve = self.curve(&e, e.reference(1)?)?;
-                    let a = self.graph.get_as(&e, e.reference(2)?, "AXIS1_PLACEMENT", "an axis")?;
+                    let a = self
+                        .graph
+                        .get_as(&e, e.reference(2)?, "AXIS1_PLACEMENT", "an axis")?;
                     let point = self.point(&a, a.reference(1)?)?;
                     let axis = match a.optional_reference(2)? {
                         Some(d) => self.direction(&a, d)?.normalize(),
@@ -309,7 +330,10 @@ impl GeometryReader<'_, '_> {
                 _ => return Err(e.unsupported("a face surface")),
             });
         }
-        if let (Some(b), Some(k)) = (r.part("B_SPLINE_SURFACE"), r.part("B_SPLINE_SURFACE_WITH_KNOTS")) {
+        if let (Some(b), Some(k)) = (
+            r.part("B_SPLINE_SURFACE"),
+            r.part("B_SPLINE_SURFACE_WITH_KNOTS"),
+        ) {
             let be = Entity { params: b, ..e };
             let ke = Entity { params: k, ..e };
             let degree = [degree_of(&be, 0)?, degree_of(&be, 1)?];
@@ -396,7 +420,9 @@ impl CurveSpec {
     /// [`CurveSpec::build`]).
     pub(crate) fn param_of(&self, p: DVec3, sense: f64) -> f64 {
         match self {
-            Self::Line { origin, direction } => (p - *origin).dot(*direction) / direction.length_squared() * sense,
+            Self::Line { origin, direction } => {
+                (p - *origin).dot(*direction) / direction.length_squared() * sense
+            }
             Self::Circle { placement, .. } | Self::Ellipse { placement, .. } => {
                 let l = p - placement.origin;
                 let (x, y) = (l.dot(placement.x), l.dot(placement.y) * sense);
@@ -413,7 +439,11 @@ impl CurveSpec {
     /// The curve over parameter `range` (in the sense-adjusted parameter), running in `sense`:
     /// +1 as the file defines it, −1 backwards (a conic about the flipped axis, a line or
     /// B-spline through t ↦ −t).
-    pub(crate) fn build(&self, range_: ParamRange, sense: f64) -> Result<Box<dyn Curve>, GeometryError> {
+    pub(crate) fn build(
+        &self,
+        range_: ParamRange,
+        sense: f64,
+    ) -> Result<Box<dyn Curve>, GeometryError> {
         Ok(match self {
             Self::Line { origin, direction } => {
                 Box::new(LineCurve::new(*origin, *direction * sense, range_)?)
@@ -430,7 +460,13 @@ impl CurveSpec {
                 range_,
             )?),
             Self::Nurbs(d) => {
-                let curve = NurbsCurve::new(d.degree, d.knots.clone(), d.points.clone(), d.weights.clone(), false)?;
+                let curve = NurbsCurve::new(
+                    d.degree,
+                    d.knots.clone(),
+                    d.points.clone(),
+                    d.weights.clone(),
+                    false,
+                )?;
                 Box::new(SubCurve {
                     inner: Box::new(curve),
                     sense,
@@ -447,7 +483,10 @@ impl CurveSpec {
             Self::Line { .. } => None,
             Self::Circle { .. } | Self::Ellipse { .. } => Some(TURN),
             Self::Nurbs(d) => {
-                let (lo, hi) = (d.knots.get(d.degree)?, d.knots.get(d.knots.len().checked_sub(d.degree + 1)?)?);
+                let (lo, hi) = (
+                    d.knots.get(d.degree)?,
+                    d.knots.get(d.knots.len().checked_sub(d.degree + 1)?)?,
+                );
                 Some(range(*lo, *hi))
             }
         }
@@ -496,9 +535,14 @@ impl SurfaceSpec {
     /// of a torus).
     pub(crate) fn periodic(&self) -> [bool; 2] {
         match self {
-            Self::Cylinder(..) | Self::Cone(..) | Self::Sphere(..) | Self::Revolution(..) => [true, false],
+            Self::Cylinder(..) | Self::Cone(..) | Self::Sphere(..) | Self::Revolution(..) => {
+                [true, false]
+            }
             Self::Torus(..) => [true, true],
-            Self::Extrusion(c, _) => [matches!(c, CurveSpec::Circle { .. } | CurveSpec::Ellipse { .. }), false],
+            Self::Extrusion(c, _) => [
+                matches!(c, CurveSpec::Circle { .. } | CurveSpec::Ellipse { .. }),
+                false,
+            ],
             _ => [false, false],
         }
     }
@@ -512,19 +556,40 @@ impl SurfaceSpec {
             Self::Cone(p, r, a) => {
                 // Keep v on the side of the apex where the face is.
                 let apex = -r / a.sin();
-                let v = range(domain[1].min.max(apex), domain[1].max.max(apex + r.abs().max(1.0)));
+                let v = range(
+                    domain[1].min.max(apex),
+                    domain[1].max.max(apex + r.abs().max(1.0)),
+                );
                 Box::new(ConeSurface::new(*p, *r, *a, [TURN, v])?)
             }
-            Self::Sphere(p, r) => Box::new(SphereSurface::new(*p, *r, [TURN, range(-FRAC_PI_2, FRAC_PI_2)])?),
-            Self::Torus(p, big, small) => Box::new(TorusSurface::new(*p, *big, *small, [TURN, TURN])?),
+            Self::Sphere(p, r) => Box::new(SphereSurface::new(
+                *p,
+                *r,
+                [TURN, range(-FRAC_PI_2, FRAC_PI_2)],
+            )?),
+            Self::Torus(p, big, small) => {
+                Box::new(TorusSurface::new(*p, *big, *small, [TURN, TURN])?)
+            }
             Self::Extrusion(c, d) => {
                 let u = c.natural_domain().unwrap_or(domain[0]);
-                Box::new(LinearExtrusionSurface::new(c.build(u, 1.0)?, *d, domain[1])?)
+                Box::new(LinearExtrusionSurface::new(
+                    c.build(u, 1.0)?,
+                    *d,
+                    domain[1],
+                )?)
             }
             Self::Revolution(c, point, axis) => {
                 let v = c.natural_domain().unwrap_or(domain[1]);
-                let v = ParamRange { periodic: false, ..v };
-                Box::new(RevolutionSurface::new(c.build(v, 1.0)?, *point, *axis, TURN)?)
+                let v = ParamRange {
+                    periodic: false,
+                    ..v
+                };
+                Box::new(RevolutionSurface::new(
+                    c.build(v, 1.0)?,
+                    *point,
+                    *axis,
+                    TURN,
+                )?)
             }
             Self::Nurbs {
                 degree,

@@ -51,14 +51,19 @@ impl<'a> Entity<'a> {
 
     /// Parameter `i`.
     pub(crate) fn param(&self, i: usize) -> Result<&'a Param, StepError> {
-        self.params
-            .get(i)
-            .ok_or_else(|| self.malformed(format!("it has {} parameters, needs at least {}", self.params.len(), i + 1)))
+        self.params.get(i).ok_or_else(|| {
+            self.malformed(format!(
+                "it has {} parameters, needs at least {}",
+                self.params.len(),
+                i + 1
+            ))
+        })
     }
 
     /// Parameter `i` as a real (an integer is accepted).
     pub(crate) fn real(&self, i: usize) -> Result<f64, StepError> {
-        real_of(self.param(i)?).ok_or_else(|| self.malformed(format!("parameter {} is not a number", i + 1)))
+        real_of(self.param(i)?)
+            .ok_or_else(|| self.malformed(format!("parameter {} is not a number", i + 1)))
     }
 
     /// Parameter `i` as an integer.
@@ -109,7 +114,11 @@ impl<'a> Entity<'a> {
     pub(crate) fn real_list(&self, i: usize) -> Result<Vec<f64>, StepError> {
         self.list(i)?
             .iter()
-            .map(|p| real_of(p).ok_or_else(|| self.malformed(format!("parameter {} holds a non-number", i + 1))))
+            .map(|p| {
+                real_of(p).ok_or_else(|| {
+                    self.malformed(format!("parameter {} holds a non-number", i + 1))
+                })
+            })
             .collect()
     }
 
@@ -175,11 +184,15 @@ impl<'a> Graph<'a> {
     /// # Errors
     /// [`StepError::MissingReference`].
     pub(crate) fn get(&self, from: &Entity<'_>, target: u64) -> Result<Entity<'a>, StepError> {
-        let record = self.file.records.get(&target).ok_or_else(|| StepError::MissingReference {
-            id: from.id,
-            entity: from.type_name(),
-            target,
-        })?;
+        let record = self
+            .file
+            .records
+            .get(&target)
+            .ok_or_else(|| StepError::MissingReference {
+                id: from.id,
+                entity: from.type_name(),
+                target,
+            })?;
         Ok(Entity {
             id: target,
             record,

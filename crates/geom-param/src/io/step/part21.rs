@@ -238,7 +238,9 @@ impl<'a> Lexer<'a> {
             }
             b'0'..=b'9' | b'-' | b'+' | b'.' => self.number()?,
             b'A'..=b'Z' | b'a'..=b'z' | b'_' | b'!' => {
-                let word = self.take_while(|b| b.is_ascii_alphanumeric() || b == b'_' || b == b'-' || b == b'!');
+                let word = self.take_while(|b| {
+                    b.is_ascii_alphanumeric() || b == b'_' || b == b'-' || b == b'!'
+                });
                 Token::Keyword(String::from_utf8_lossy(word).to_ascii_uppercase())
             }
             other => {
@@ -297,7 +299,8 @@ impl<'a> Lexer<'a> {
     }
 
     fn number(&mut self) -> Result<Token, StepError> {
-        let text = self.take_while(|b| b.is_ascii_digit() || matches!(b, b'+' | b'-' | b'.' | b'E' | b'e'));
+        let text = self
+            .take_while(|b| b.is_ascii_digit() || matches!(b, b'+' | b'-' | b'.' | b'E' | b'e'));
         let text = std::str::from_utf8(text).map_err(|_| self.syntax("bad number"))?;
         if !text.contains(['.', 'E', 'e']) {
             if let Ok(i) = text.parse::<i64>() {
@@ -341,14 +344,18 @@ impl Parser<'_> {
         if &got == want {
             Ok(())
         } else {
-            Err(self.lexer.syntax(format!("expected {want:?} in {inside}, found {got:?}")))
+            Err(self
+                .lexer
+                .syntax(format!("expected {want:?} in {inside}, found {got:?}")))
         }
     }
 
     fn keyword(&mut self, inside: &str) -> Result<String, StepError> {
         match self.next(inside)? {
             Token::Keyword(k) => Ok(k),
-            other => Err(self.lexer.syntax(format!("expected a keyword in {inside}, found {other:?}"))),
+            other => Err(self
+                .lexer
+                .syntax(format!("expected a keyword in {inside}, found {other:?}"))),
         }
     }
 
@@ -371,9 +378,9 @@ impl Parser<'_> {
                 Token::Comma => {}
                 Token::Close => return Ok(out),
                 other => {
-                    return Err(self.lexer.syntax(format!(
-                        "expected ',' or ')' in {inside}, found {other:?}"
-                    )));
+                    return Err(self
+                        .lexer
+                        .syntax(format!("expected ',' or ')' in {inside}, found {other:?}")));
                 }
             }
         }

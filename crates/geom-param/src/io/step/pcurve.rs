@@ -35,8 +35,16 @@ pub(crate) fn project(surface: &dyn Surface, p: DVec3, start: DVec2) -> Projecti
     let [ru, rv] = surface.domain();
     let clamp = |uv: DVec2| {
         DVec2::new(
-            if ru.periodic { uv.x } else { uv.x.clamp(ru.min, ru.max) },
-            if rv.periodic { uv.y } else { uv.y.clamp(rv.min, rv.max) },
+            if ru.periodic {
+                uv.x
+            } else {
+                uv.x.clamp(ru.min, ru.max)
+            },
+            if rv.periodic {
+                uv.y
+            } else {
+                uv.y.clamp(rv.min, rv.max)
+            },
         )
     };
     let eval = |uv: DVec2| surface.eval(ru.normalize(uv.x), rv.normalize(uv.y));
@@ -163,7 +171,13 @@ fn wrap_near(x: DVec2, near: DVec2, periods: [f64; 2]) -> DVec2 {
 pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
     let surface = input.surface;
     let domain = surface.domain();
-    let periods = [0, 1].map(|i| if domain[i].periodic { domain[i].span() } else { 0.0 });
+    let periods = [0, 1].map(|i| {
+        if domain[i].periodic {
+            domain[i].span()
+        } else {
+            0.0
+        }
+    });
     let range = input.curve.domain();
     let mut segments = FIRST_SEGMENTS;
     loop {
@@ -198,11 +212,23 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
         }
         // Shift so the loop's entry point is next to the previous entry's end, or in the
         // domain.
-        let entry = if input.reversed { uvs[count - 1] } else { uvs[0] };
+        let entry = if input.reversed {
+            uvs[count - 1]
+        } else {
+            uvs[0]
+        };
         let anchor = input.previous_end.unwrap_or_else(|| {
             DVec2::new(
-                if periods[0] > 0.0 { domain[0].min + 0.5 * periods[0] } else { entry.x },
-                if periods[1] > 0.0 { domain[1].min + 0.5 * periods[1] } else { entry.y },
+                if periods[0] > 0.0 {
+                    domain[0].min + 0.5 * periods[0]
+                } else {
+                    entry.x
+                },
+                if periods[1] > 0.0 {
+                    domain[1].min + 0.5 * periods[1]
+                } else {
+                    entry.y
+                },
             )
         });
         let shift = wrap_near(entry, anchor, periods) - entry;
@@ -211,7 +237,11 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
         }
         // Consecutive entries meet exactly in (u, v): the entry point is the previous end, the
         // exit point the given one (both within the healed gap of the projections).
-        let (first, last) = if input.reversed { (count - 1, 0) } else { (0, count - 1) };
+        let (first, last) = if input.reversed {
+            (count - 1, 0)
+        } else {
+            (0, count - 1)
+        };
         if let Some(prev) = input.previous_end {
             uvs[first] = prev;
         }
@@ -227,12 +257,18 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
             let mut worst: f64 = 0.0;
             for k in 0..count {
                 let q = c.eval(ts[k]).point;
-                let on = surface.eval(domain[0].normalize(q.x), domain[1].normalize(q.y)).point;
+                let on = surface
+                    .eval(domain[0].normalize(q.x), domain[1].normalize(q.y))
+                    .point;
                 let target = surface
                     .eval(domain[0].normalize(uvs[k].x), domain[1].normalize(uvs[k].y))
                     .point;
                 let d = on.distance(target);
-                worst = if d.is_nan() { f64::INFINITY } else { worst.max(d) };
+                worst = if d.is_nan() {
+                    f64::INFINITY
+                } else {
+                    worst.max(d)
+                };
             }
             worst
         };

@@ -66,11 +66,17 @@ pub(crate) fn units_of(graph: &Graph<'_>, context: u64) -> Result<Units, StepErr
         id: context,
         reason: "the context does not exist".into(),
     })?;
-    let units = ctx.record.part("GLOBAL_UNIT_ASSIGNED_CONTEXT").ok_or_else(|| StepError::Units {
-        id: context,
-        reason: "the representation context has no GLOBAL_UNIT_ASSIGNED_CONTEXT".into(),
-    })?;
-    let units_entity = Entity { params: units, ..ctx };
+    let units = ctx
+        .record
+        .part("GLOBAL_UNIT_ASSIGNED_CONTEXT")
+        .ok_or_else(|| StepError::Units {
+            id: context,
+            reason: "the representation context has no GLOBAL_UNIT_ASSIGNED_CONTEXT".into(),
+        })?;
+    let units_entity = Entity {
+        params: units,
+        ..ctx
+    };
     let mut length = None;
     let mut angle = 1.0;
     for unit in units_entity.ref_list(0)? {
@@ -143,15 +149,20 @@ fn unit_factor(graph: &Graph<'_>, unit: &Entity<'_>, depth: usize) -> Result<f64
     if let Some(params) = unit.record.part("CONVERSION_BASED_UNIT") {
         let e = Entity { params, ..*unit };
         let measure = graph.get(&e, e.reference(1)?)?;
-        let value = measure.params.first().and_then(real_of).ok_or_else(|| {
-            measure.malformed("the measure's value is not a number")
-        })?;
+        let value = measure
+            .params
+            .first()
+            .and_then(real_of)
+            .ok_or_else(|| measure.malformed("the measure's value is not a number"))?;
         let base = graph.get(&measure, measure.reference(1)?)?;
         return Ok(value * unit_factor(graph, &base, depth + 1)?);
     }
     Err(StepError::Units {
         id: unit.id,
-        reason: format!("{} is neither an SI_UNIT nor a CONVERSION_BASED_UNIT", unit.type_name()),
+        reason: format!(
+            "{} is neither an SI_UNIT nor a CONVERSION_BASED_UNIT",
+            unit.type_name()
+        ),
     })
 }
 
