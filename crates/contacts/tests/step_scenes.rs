@@ -6,8 +6,8 @@
 use contact_oracle::{OracleOptions, OracleState, find_contacts};
 use contact_pipeline::{PairState, QueryScratch};
 use contacts::run::prepare_scene;
-use geom_param::step::read_step;
 use geom_param::Solid;
+use geom_param::step::read_step;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -68,23 +68,31 @@ fn step_scenes_agree_with_the_oracle() {
             OracleState::Penetration => PairState::Penetration,
         };
         assert_eq!(report.state, state, "{name}");
-        assert_eq!(oracle.cross_check.unmatched, 0, "{name}: the oracle's two samplings agree");
+        assert_eq!(
+            oracle.cross_check.unmatched, 0,
+            "{name}: the oracle's two samplings agree"
+        );
         let in_band: Vec<_> = oracle
             .contacts
             .iter()
             .filter(|c| options.delta1 <= c.distance && c.distance <= options.delta2)
             .collect();
-        assert_eq!(report.contacts.len(), in_band.len(), "{name}: contact count");
+        assert_eq!(
+            report.contacts.len(),
+            in_band.len(),
+            "{name}: contact count"
+        );
         for o in &in_band {
-            let m = report
-                .contacts
-                .iter()
-                .find(|c| {
-                    (c.distance - o.distance).abs() <= 1e-9
-                        && c.point_a.distance(o.point_a) <= 1e-6
-                        && c.point_b.distance(o.point_b) <= 1e-6
-                });
-            assert!(m.is_some(), "{name}: oracle contact {o:?} not found in {:?}", report.contacts);
+            let m = report.contacts.iter().find(|c| {
+                (c.distance - o.distance).abs() <= 1e-9
+                    && c.point_a.distance(o.point_a) <= 1e-6
+                    && c.point_b.distance(o.point_b) <= 1e-6
+            });
+            assert!(
+                m.is_some(),
+                "{name}: oracle contact {o:?} not found in {:?}",
+                report.contacts
+            );
         }
     }
 }

@@ -144,11 +144,6 @@ pub(crate) fn read_solid(graph: &Graph<'_>, root: u64) -> Result<StepSolid, Step
     builder.finish(name, faces)
 }
 
-/// Debug: read without validation.
-pub(crate) fn read_solid_unvalidated(graph: &Graph<'_>, root: u64) -> Solid {
-    read_solid(graph, root).expect("read").solid
-}
-
 /// What every loop fit of one face shares.
 struct LoopContext<'s> {
     face: u64,
@@ -500,6 +495,7 @@ impl<'g, 'a> Builder<'g, 'a> {
                 previous_end,
                 tolerance: self.fit_tolerance,
                 snap_end,
+                snap_limit: limit,
             };
             let pc = fit(&input).map_err(|reason| StepError::PCurve {
                 face: ctx.face,

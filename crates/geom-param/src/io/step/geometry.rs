@@ -229,12 +229,15 @@ impl GeometryReader<'_, '_> {
                     let points = self.points(&e, 2)?;
                     let knots = expand_knots(&e, 6, 7)?;
                     let weights = vec![1.0; points.len()];
-                    return Ok(CurveSpec::Nurbs(BSplineData {
-                        degree,
-                        knots,
-                        points,
-                        weights,
-                    }));
+                    return checked_curve(
+                        &e,
+                        BSplineData {
+                            degree,
+                            knots,
+                            points,
+                            weights,
+                        },
+                    );
                 }
                 _ => return Err(e.unsupported("an edge curve")),
             }
@@ -253,12 +256,15 @@ impl GeometryReader<'_, '_> {
                 Some(w) => Entity { params: w, ..e }.real_list(0)?,
                 None => vec![1.0; points.len()],
             };
-            return Ok(CurveSpec::Nurbs(BSplineData {
-                degree,
-                knots,
-                points,
-                weights,
-            }));
+            return checked_curve(
+                &e,
+                BSplineData {
+                    degree,
+                    knots,
+                    points,
+                    weights,
+                },
+            );
         }
         Err(e.unsupported("an edge curve"))
     }
@@ -273,7 +279,26 @@ impl GeometryReader<'_, '_> {
     /// The surface of entity `id` (a RECTANGULAR_TRIMMED_SURFACE by its basis surface: the
     /// face's loops bound it).
     pub(crate) fn surface(&self, from: &Entity<'_>, id: u64) -> Result<SurfaceSpec, StepError> {
-        let e = self.graph.get(from, id)?;
+        let mut e = self.graph.get(from, id)?;
+        // A RECTANGULAR_TRIMMED_SURFACE by its basis surface (the face's loops bound it).
+        let mut depth = 0;
+        while e.record.parts.len() == 1 && e.record.parts[0].0 == "RECTANGULAR_TRIMMED_SURFACE" {
+            depth += 1;
+            if depth > MAX_CURVE_NESTING {
+                return Err(e.malformed("trimmed surfaces nest too deeply"));
+            }
+            e = self.graph.get(&e, e.reference(1)?)?;
+        }
+        let spec = self.surface_spec(&e)?;
+        if let SurfaceSpec::Nurbs { .. } = spec {
+            spec.build([range(0.0, 1.0), range(0.0, 1.0)])
+                .map_err(|g| e.geometry(g))?;
+        }
+        Ok(spec)
+    }
+
+    fn surface_spec(&self, e: &Entity<'_>) -> Result<SurfaceSpec, StepError> {
+        let e = *e;
         let r = e.record;
         if r.parts.len() == 1 {
             let name = r.parts[0].0.as_str();
@@ -314,7 +339,6 @@ impl GeometryReader<'_, '_> {
                     };
                     SurfaceSpec::Revolution(curve, point, axis)
                 }
-                "RECTANGULAR_TRIMMED_SURFACE" => return self.surface(&e, e.reference(1)?),
                 "B_SPLINE_SURFACE_WITH_KNOTS" => {
                     let degree = [degree_of(&e, 1)?, degree_of(&e, 2)?];
                     let points = self.net(&e, 3)?;
@@ -383,6 +407,20 @@ impl GeometryReader<'_, '_> {
             })
             .collect()
     }
+}
+
+/// A B-spline curve whose data the constructor accepts (knots, weights), with the
+/// constructor's error naming the entity.
+fn checked_curve(e: &Entity<'_>, data: BSplineData<Vec<DVec3>>) -> Result<CurveSpec, StepError> {
+    NurbsCurve::new(
+        data.degree,
+        data.knots.clone(),
+        data.points.clone(),
+        data.weights.clone(),
+        false,
+    )
+    .map_err(|g| e.geometry(g))?;
+    Ok(CurveSpec::Nurbs(data))
 }
 
 fn degree_of(e: &Entity<'_>, i: usize) -> Result<usize, StepError> {

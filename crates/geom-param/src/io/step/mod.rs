@@ -76,27 +76,3 @@ pub fn read_step(bytes: &[u8]) -> Result<Vec<StepSolid>, StepError> {
         .map(|&root| brep::read_solid(&graph, root))
         .collect()
 }
-
-/// Debug: the solids without validation.
-#[doc(hidden)]
-pub fn debug_read(bytes: &[u8]) -> Vec<crate::Solid> {
-    let file = part21::parse(bytes).expect("parse");
-    let graph = Graph { file: &file };
-    let mut roots: Vec<u64> = file
-        .records
-        .iter()
-        .filter(|(_, r)| {
-            r.parts.len() == 1
-                && matches!(
-                    r.parts[0].0.as_str(),
-                    "MANIFOLD_SOLID_BREP" | "BREP_WITH_VOIDS"
-                )
-        })
-        .map(|(&id, _)| id)
-        .collect();
-    roots.sort_unstable();
-    roots
-        .iter()
-        .map(|&r| brep::read_solid_unvalidated(&graph, r))
-        .collect()
-}

@@ -150,6 +150,9 @@ pub(crate) struct FitInput<'a> {
     /// Where the loop leaves this entry in (u, v), when it must end exactly there (the last
     /// entry of a loop ends where the first began).
     pub snap_end: Option<DVec2>,
+    /// Largest distance (mm) on the surface over which an end is snapped to its neighbour's;
+    /// farther, the ends are left apart for the loop's closure check to report.
+    pub snap_limit: f64,
 }
 
 /// Shift by whole periods that brings `x` nearest `near` (0 for a non-periodic parameter).
@@ -242,11 +245,20 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
         } else {
             (0, count - 1)
         };
-        if let Some(prev) = input.previous_end {
+        let on = |uv: DVec2| {
+            surface
+                .eval(domain[0].normalize(uv.x), domain[1].normalize(uv.y))
+                .point
+        };
+        let near = |a: DVec2, b: DVec2| on(a).distance(on(b)) <= input.snap_limit;
+        if let Some(prev) = input.previous_end.filter(|&p| near(p, uvs[first])) {
             uvs[first] = prev;
         }
         if let Some(end) = input.snap_end {
-            uvs[last] = wrap_near(end, uvs[last], periods);
+            let end = wrap_near(end, uvs[last], periods);
+            if near(end, uvs[last]) {
+                uvs[last] = end;
+            }
         }
         let edge_range = ParamRange {
             min: range.min,
