@@ -23,6 +23,29 @@ fn main() {
     let gap = p[6];
     let b = &read_step(&bytes).unwrap()[0].solid;
     // Bisection on the translation along dir so that the oracle's minimum is `gap`.
+    if args.len() > 9 {
+        // Single: translation along dir by args[9] exactly; one oracle run.
+        let t: f64 = args[9].parse().unwrap();
+        let pose = DPose3 {
+            rotation: rot,
+            translation: dir * t,
+        };
+        let opts = OracleOptions::for_solids(s, b, 3.0);
+        let r = find_contacts(s, &DPose3::IDENTITY, b, &pose, &opts).unwrap();
+        println!(
+            "translation {:?} rotation {:?} min {}",
+            pose.translation.to_array(),
+            pose.rotation.to_array(),
+            r.min_distance
+        );
+        for c in &r.contacts {
+            println!(
+                "  d {} a {} b {} n {}",
+                c.distance, c.point_a, c.point_b, c.normal
+            );
+        }
+        return;
+    }
     let (mut t0, mut t1) = (0.0, 2.0 * (hi - lo).length());
     let mut pose = DPose3::IDENTITY;
     for _ in 0..40 {

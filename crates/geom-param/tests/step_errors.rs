@@ -14,9 +14,9 @@ fn fixture(name: &str) -> String {
         .replace("\r\n", "\n")
 }
 
-/// The Onshape cube and cylinder (two solids, 18 kB).
+/// The cube and cylinder of CadQuery's test data (two solids, 18 kB).
 fn cube() -> String {
-    fixture("onshape_red_cube_blue_cylinder.step")
+    fixture("red_cube_blue_cylinder.step")
 }
 
 /// `text` with `from` replaced by `to`, which must occur exactly once.

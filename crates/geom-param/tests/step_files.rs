@@ -118,10 +118,10 @@ fn assert_volume(name: &str, m: &Measured, volume: f64) {
 }
 
 #[test]
-fn onshape_cube_and_cylinder_match_their_closed_forms() {
-    // Onshape export (via CadQuery's test data), lengths in metres: a 10 mm cube and a
+fn cube_and_cylinder_match_their_closed_forms() {
+    // A CAD export from CadQuery's test data, lengths in metres: a 10 mm cube and a
     // cylinder of radius 5 mm and height 10 mm, its side written without a seam edge.
-    let solids = read("onshape_red_cube_blue_cylinder.step");
+    let solids = read("red_cube_blue_cylinder.step");
     let names: Vec<&str> = solids.iter().map(|s| s.name.as_str()).collect();
     assert_eq!(names, ["blue_cylinder", "red_cube"]);
     for s in solids {
@@ -157,42 +157,153 @@ fn onshape_cube_and_cylinder_match_their_closed_forms() {
     }
 }
 
-/// The volume of a binary STL (divergence theorem over its triangles).
-fn stl_volume(bytes: &[u8]) -> f64 {
+/// The triangles of a binary STL, scaled by `scale`.
+fn stl_triangles(bytes: &[u8], scale: f64) -> Vec<[DVec3; 3]> {
     let count = u32::from_le_bytes(bytes[80..84].try_into().expect("4 bytes")) as usize;
-    let mut volume = 0.0;
-    for k in 0..count {
-        let at = 84 + 50 * k + 12;
-        let f = |i: usize| {
-            let o = at + 4 * i;
-            f64::from(f32::from_le_bytes(
-                bytes[o..o + 4].try_into().expect("4 bytes"),
-            ))
-        };
-        let p = [0, 1, 2].map(|v| DVec3::new(f(3 * v), f(3 * v + 1), f(3 * v + 2)));
-        volume += p[0].dot(p[1].cross(p[2])) / 6.0;
+    assert_eq!(bytes.len(), 84 + 50 * count, "a binary STL");
+    (0..count)
+        .map(|k| {
+            let at = 84 + 50 * k + 12;
+            let f = |i: usize| {
+                let o = at + 4 * i;
+                f64::from(f32::from_le_bytes(
+                    bytes[o..o + 4].try_into().expect("4 bytes"),
+                ))
+            };
+            [0, 1, 2].map(|v| DVec3::new(f(3 * v), f(3 * v + 1), f(3 * v + 2)) * scale)
+        })
+        .collect()
+}
+
+/// The point of triangle `t` nearest `p` (Ericson, Real-Time Collision Detection, 5.1.5).
+fn closest_on_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> DVec3 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
     }
-    volume
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
+}
+
+/// Largest distance from the STL's vertices, edge midpoints and centroids to the model's mesh
+/// (a uniform grid of the mesh's triangles, searched ring by ring).
+fn stl_deviation(stl: &[[DVec3; 3]], model: &ObjectModel) -> f64 {
+    let triangles: Vec<[DVec3; 3]> = model
+        .meshes
+        .iter()
+        .flat_map(|m| (0..m.len()).map(move |k| m.triangle(k)))
+        .collect();
+    let cell = 2.0;
+    let key = |p: DVec3| (p / cell).floor().as_ivec3();
+    let mut grid: HashMap<glam::IVec3, Vec<usize>> = HashMap::new();
+    for (i, t) in triangles.iter().enumerate() {
+        let lo = key(t[0].min(t[1]).min(t[2]));
+        let hi = key(t[0].max(t[1]).max(t[2]));
+        for x in lo.x..=hi.x {
+            for y in lo.y..=hi.y {
+                for z in lo.z..=hi.z {
+                    grid.entry(glam::IVec3::new(x, y, z)).or_default().push(i);
+                }
+            }
+        }
+    }
+    let distance = |p: DVec3| -> f64 {
+        let k = key(p);
+        for ring in 1..8 {
+            let mut best = f64::INFINITY;
+            for x in -ring..=ring {
+                for y in -ring..=ring {
+                    for z in -ring..=ring {
+                        for &i in grid
+                            .get(&(k + glam::IVec3::new(x, y, z)))
+                            .into_iter()
+                            .flatten()
+                        {
+                            best = best.min(closest_on_triangle(p, triangles[i]).distance(p));
+                        }
+                    }
+                }
+            }
+            // Every triangle within ring cells' distance has been seen.
+            if best <= f64::from(ring) * cell {
+                return best;
+            }
+        }
+        f64::INFINITY
+    };
+    let mut worst: f64 = 0.0;
+    for t in stl {
+        let samples = [
+            t[0],
+            t[1],
+            t[2],
+            0.5 * (t[0] + t[1]),
+            0.5 * (t[1] + t[2]),
+            0.5 * (t[2] + t[0]),
+            (t[0] + t[1] + t[2]) / 3.0,
+        ];
+        for p in samples {
+            worst = worst.max(distance(p));
+        }
+    }
+    worst
 }
 
 #[test]
 fn solidworks_featuretype_matches_its_own_stl_export() {
-    // SolidWorks 2013 export in inches (trimesh's test models), with the STL SolidWorks wrote of
-    // the same part (in mm) as the independent value.
+    // SolidWorks 2013 export in inches (trimesh's test models), with the binary STL SolidWorks
+    // wrote of the same part (also inches) as the independent value.
     let solids = read("solidworks_featuretype.step");
     assert_eq!(solids.len(), 1);
     let s = solids.into_iter().next().expect("one solid");
+    assert_eq!(s.name, "Cut-Extrude6");
     let name = s.name.clone();
     let m = model(s, 0.02);
     assert_watertight(&name, &m);
     let measured = measure(&m);
-    let stl = fixture("solidworks_featuretype.stl");
-    let reference = stl_volume(&stl);
+    let stl = stl_triangles(&fixture("solidworks_featuretype.stl"), 25.4);
+    let stl_volume: f64 = stl.iter().map(|p| p[0].dot(p[1].cross(p[2])) / 6.0).sum();
+    let stl_area: f64 = stl
+        .iter()
+        .map(|p| 0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length())
+        .sum();
+    // Both meshes approximate one solid: the STL within its measured deviation from our mesh
+    // plus our chordal error, ours within the chordal error. The volumes differ by at most the
+    // sum of area x deviation.
+    let stl_error = stl_deviation(&stl, &m) + measured.chordal_error;
+    let bound = stl_area * stl_error + measured.area * measured.chordal_error;
     println!(
-        "{name}: mesh volume {} STL volume {reference} area {}",
-        measured.volume, measured.area
+        "{name}: mesh volume {} mm^3, STL {stl_volume} mm^3, bound {bound} (STL deviation {stl_error} mm)",
+        measured.volume
     );
-    assert!(measured.volume > 0.0);
+    assert!(
+        (measured.volume - stl_volume).abs() <= bound,
+        "{name}: volume {} vs the STL's {stl_volume} (bound {bound})",
+        measured.volume
+    );
 }
 
 #[test]

@@ -153,8 +153,8 @@ fn run_mutations(name: &str, cases: usize, seed: u64) {
 }
 
 #[test]
-fn mutated_onshape_cube_and_cylinder() {
-    run_mutations("onshape_red_cube_blue_cylinder.step", 400, 14);
+fn mutated_cube_and_cylinder() {
+    run_mutations("red_cube_blue_cylinder.step", 400, 14);
 }
 
 #[test]
