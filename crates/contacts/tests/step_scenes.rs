@@ -106,3 +106,21 @@ fn a_scene_can_name_a_step_solid_by_index_or_name() {
     assert_eq!(a.model.solid.faces.len(), 6);
     assert_eq!(b.model.solid.faces.len(), 3);
 }
+
+#[test]
+fn crossed_step_cylinders_match_the_closed_form() {
+    // Axes perpendicular and 10.05 mm apart, radius 5: the gap is 0.05 mm, at (15, 5, 5) on A
+    // and (15.05, 5, 5) on B, along +x.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/scenes");
+    let scene = prepare_scene(&dir.join("step-cylinder-cylinder-one-contact.json")).expect("loads");
+    let report = scene
+        .query((0, 1), &mut QueryScratch::default())
+        .expect("query");
+    assert_eq!(report.state, PairState::Contact);
+    let [c] = report.contacts.as_slice() else {
+        panic!("one contact: {:?}", report.contacts);
+    };
+    assert!((c.distance - 0.05).abs() < 1e-9, "{}", c.distance);
+    assert!(c.point_a.distance(glam::DVec3::new(15.0, 5.0, 5.0)) < 1e-6);
+    assert!(c.point_b.distance(glam::DVec3::new(15.05, 5.0, 5.0)) < 1e-6);
+}
