@@ -1,7 +1,7 @@
 //! The `contacts` binary on scenes whose STEP objects are bad: exit status 2 and one message on
 //! stderr naming the entity type and `#id` (or the solid asked for), no panic.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn fixture(name: &str) -> String {
@@ -31,7 +31,7 @@ fn scene_with(name: &str, step: &str, solid: Option<&str>) -> PathBuf {
     path
 }
 
-fn assert_bad(path: &PathBuf, needle: &str) {
+fn assert_bad(path: &Path, needle: &str) {
     let out = Command::new(env!("CARGO_BIN_EXE_contacts"))
         .args(["query", path.to_str().expect("utf-8 path")])
         .output()

@@ -15,7 +15,9 @@ const FILES: [&str; 3] = [
 
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("step_load");
-    group.sample_size(10).measurement_time(Duration::from_secs(3));
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(3));
     for name in FILES {
         let path = format!("{}/../../fixtures/step/{name}", env!("CARGO_MANIFEST_DIR"));
         let bytes = std::fs::read(&path).expect("fixture");
@@ -28,7 +30,9 @@ fn bench(c: &mut Criterion) {
                     let options = MeshOptions {
                         chordal_tolerance: 0.05,
                     };
-                    black_box(ObjectModel::from_solid(s.name, s.solid, &options).expect("prepares"));
+                    black_box(
+                        ObjectModel::from_solid(s.name, s.solid, &options).expect("prepares"),
+                    );
                 }
             });
         });

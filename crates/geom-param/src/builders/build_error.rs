@@ -46,7 +46,7 @@ pub enum BuildError {
     Step {
         /// The file's path.
         file: String,
-        /// The reader's typed error (entity type and `#id`).
-        source: crate::io::step::StepError,
+        /// The reader's typed error (entity type and `#id`), boxed to keep the error small.
+        source: Box<crate::io::step::StepError>,
     },
 }

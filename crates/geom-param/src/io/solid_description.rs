@@ -111,7 +111,7 @@ fn read_step_solid(file: &str, which: Option<&StepSolidRef>) -> Result<Solid, Bu
     let bytes = std::fs::read(file).map_err(|e| fail(e.to_string()))?;
     let solids = crate::io::step::read_step(&bytes).map_err(|source| BuildError::Step {
         file: file.to_string(),
-        source,
+        source: Box::new(source),
     })?;
     let names = || {
         solids

@@ -144,6 +144,15 @@ pub(crate) fn read_solid(graph: &Graph<'_>, root: u64) -> Result<StepSolid, Step
     builder.finish(name, faces)
 }
 
+/// One entry of a loop as read: (edge index, reversed, ORIENTED_EDGE id).
+type LoopEntry = (usize, bool, u64);
+/// A loop as read: (EDGE_LOOP id, entries).
+type ReadLoop = (u64, Vec<LoopEntry>);
+/// A loop that wraps once around a periodic u: (EDGE_LOOP id, entries, +1 or −1).
+type WrappingLoop = (u64, Vec<LoopEntry>, f64);
+/// One entry with its p-curve: (edge index, reversed, p-curve).
+type FittedEntry = (usize, bool, Box<dyn crate::Curve2>);
+
 /// What every loop fit of one face shares.
 struct LoopContext<'s> {
     face: u64,
@@ -154,7 +163,7 @@ struct LoopContext<'s> {
 
 /// One loop's p-curves.
 struct FittedLoop {
-    entries: Vec<(usize, bool, Box<dyn crate::Curve2>)>,
+    entries: Vec<FittedEntry>,
     /// Whole periods between the loop's end and its start in (u, v) (0 for a loop that
     /// closes in the parameter plane).
     wrap: [i32; 2],
@@ -167,7 +176,7 @@ struct PendingFace<'a> {
     entity: Entity<'a>,
     surface: SurfaceSpec,
     sense: bool,
-    loops: Vec<(u64, Vec<(usize, bool, u64)>)>,
+    loops: Vec<ReadLoop>,
 }
 
 impl<'g, 'a> Builder<'g, 'a> {
@@ -360,10 +369,10 @@ impl<'g, 'a> Builder<'g, 'a> {
                 0.0
             }
         });
-        let mut fitted_loops: Vec<Vec<(usize, bool, Box<dyn crate::Curve2>)>> = Vec::new();
+        let mut fitted_loops: Vec<Vec<FittedEntry>> = Vec::new();
         let mut areas = Vec::new();
         // Loops that wrap once around a periodic u: (loop id, entries, wrap sign).
-        let mut wrapping: Vec<(u64, Vec<(usize, bool, u64)>, f64)> = Vec::new();
+        let mut wrapping: Vec<WrappingLoop> = Vec::new();
         let fit_ctx = LoopContext {
             face: f.id,
             surface: surface.as_ref(),
@@ -466,7 +475,7 @@ impl<'g, 'a> Builder<'g, 'a> {
         &mut self,
         ctx: &LoopContext<'_>,
         loop_id: u64,
-        entries: &[(usize, bool, u64)],
+        entries: &[LoopEntry],
     ) -> Result<FittedLoop, StepError> {
         let surface = ctx.surface;
         let domain = surface.domain();
@@ -604,8 +613,8 @@ impl<'g, 'a> Builder<'g, 'a> {
         &mut self,
         f: &Entity<'_>,
         spec: &SurfaceSpec,
-        mut wrapping: Vec<(u64, Vec<(usize, bool, u64)>, f64)>,
-    ) -> Result<(u64, Vec<(usize, bool, u64)>), StepError> {
+        mut wrapping: Vec<WrappingLoop>,
+    ) -> Result<ReadLoop, StepError> {
         let ruled = matches!(spec, SurfaceSpec::Cylinder(..) | SurfaceSpec::Cone(..));
         if wrapping.len() != 2 || wrapping[0].2 == wrapping[1].2 || !ruled {
             let id = wrapping[0].0;
@@ -757,7 +766,7 @@ fn nearest_param(curve: &dyn Curve, p: DVec3) -> f64 {
         let r = c.point - p;
         let g = r.dot(c.d1);
         let h = c.d1.length_squared() + r.dot(c.d2);
-        if !(h > 0.0) {
+        if h.is_nan() || h <= 0.0 {
             break;
         }
         let next = (t - g / h).clamp(d.min, d.max);

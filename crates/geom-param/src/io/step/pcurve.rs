@@ -82,7 +82,7 @@ pub(crate) fn project(surface: &dyn Surface, p: DVec3, start: DVec2) -> Projecti
         let moved = (next - uv).length();
         uv = next;
         s = ns;
-        if !(moved > 1e-15 * (1.0 + uv.length())) {
+        if moved.is_nan() || moved <= 1e-15 * (1.0 + uv.length()) {
             break;
         }
     }
