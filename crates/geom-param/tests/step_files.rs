@@ -321,3 +321,89 @@ fn solidworks_base_interface_reads_and_meshes_watertight() {
     );
     assert!(measured.volume > 0.0);
 }
+
+/// A frustum of a cone written by hand (not an export): bottom radius 10 at z = 0, top radius 5
+/// at z = 8; the conical face bounded by its two circles without a seam (the reader adds one),
+/// the bottom cap a plane facing +z used with same_sense false.
+const FRUSTUM: &str = "ISO-10303-21;
+HEADER;
+FILE_DESCRIPTION((''),'2;1');
+FILE_NAME('frustum','',(''),(''),'','','');
+FILE_SCHEMA(('CONFIG_CONTROL_DESIGN'));
+ENDSEC;
+DATA;
+#1 = ( LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.) );
+#2 = ( NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.) );
+#3 = UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE(1.E-07),#1,'distance_accuracy_value','');
+#4 = ( GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#3)) GLOBAL_UNIT_ASSIGNED_CONTEXT((#1,#2)) REPRESENTATION_CONTEXT('','') );
+#5 = ADVANCED_BREP_SHAPE_REPRESENTATION('',(#10),#4);
+#10 = MANIFOLD_SOLID_BREP('frustum',#11);
+#11 = CLOSED_SHELL('',(#20,#30,#40));
+#12 = DIRECTION('',(0.,0.,1.));
+#13 = DIRECTION('',(1.,0.,0.));
+#14 = DIRECTION('',(0.,0.,-1.));
+#15 = CARTESIAN_POINT('',(0.,0.,0.));
+#16 = CARTESIAN_POINT('',(0.,0.,8.));
+#17 = AXIS2_PLACEMENT_3D('',#15,#12,#13);
+#18 = AXIS2_PLACEMENT_3D('',#16,#12,#13);
+#19 = AXIS2_PLACEMENT_3D('',#16,#14,#13);
+#50 = CIRCLE('',#17,10.);
+#51 = CIRCLE('',#18,5.);
+#52 = CARTESIAN_POINT('',(10.,0.,0.));
+#53 = CARTESIAN_POINT('',(5.,0.,8.));
+#54 = VERTEX_POINT('',#52);
+#55 = VERTEX_POINT('',#53);
+#56 = EDGE_CURVE('',#54,#54,#50,.T.);
+#57 = EDGE_CURVE('',#55,#55,#51,.T.);
+#20 = ADVANCED_FACE('',(#21,#22),#25,.T.);
+#21 = FACE_BOUND('',#23,.T.);
+#22 = FACE_BOUND('',#24,.T.);
+#23 = EDGE_LOOP('',(#26));
+#24 = EDGE_LOOP('',(#27));
+#26 = ORIENTED_EDGE('',*,*,#56,.T.);
+#27 = ORIENTED_EDGE('',*,*,#57,.F.);
+#25 = CONICAL_SURFACE('',#19,5.,0.5585993153435624);
+#30 = ADVANCED_FACE('',(#31),#33,.F.);
+#31 = FACE_OUTER_BOUND('',#32,.T.);
+#32 = EDGE_LOOP('',(#34));
+#34 = ORIENTED_EDGE('',*,*,#56,.F.);
+#33 = PLANE('',#17);
+#40 = ADVANCED_FACE('',(#41),#43,.T.);
+#41 = FACE_OUTER_BOUND('',#42,.T.);
+#42 = EDGE_LOOP('',(#44));
+#44 = ORIENTED_EDGE('',*,*,#57,.T.);
+#43 = PLANE('',#18);
+ENDSEC;
+END-ISO-10303-21;
+";
+
+#[test]
+fn a_cone_frustum_matches_its_closed_form() {
+    // tan a = 5 / 8: the semi-angle in the file is atan(5/8).
+    assert!((0.5585993153435624_f64.tan() - 0.625).abs() < 1e-15);
+    let solids = read_step(FRUSTUM.as_bytes()).expect("reads");
+    let s = solids.into_iter().next().expect("one solid");
+    assert_eq!(
+        (s.solid.faces.len(), s.solid.edges.len()),
+        (3, 3),
+        "two circles and a seam"
+    );
+    let m = model(s, 0.01);
+    assert_watertight("frustum", &m);
+    let measured = measure(&m);
+    let (big, small, h) = (10.0, 5.0, 8.0);
+    let volume = PI * h * (big * big + big * small + small * small) / 3.0;
+    assert_volume("frustum", &measured, volume);
+    let slant = f64::hypot(h, big - small);
+    let area = PI * (big * big + small * small) + PI * (big + small) * slant;
+    // Curved faces lose at most 1 - cos of the normal deviation (cos θ >= 1 - 2ε/ρ with ρ the
+    // smallest radius of curvature, 5 / cos a on the cone), plus ε along each curved edge.
+    let rho = small / (8.0 / slant);
+    let bound = area * 2.0 * measured.chordal_error / rho
+        + 2.0 * 2.0 * PI * (big + small) * measured.chordal_error;
+    assert!(
+        (measured.area - area).abs() <= bound,
+        "area {} vs {area} (bound {bound})",
+        measured.area
+    );
+}
