@@ -407,3 +407,26 @@ fn a_cone_frustum_matches_its_closed_form() {
         measured.area
     );
 }
+
+#[test]
+fn brep_with_voids_flips_its_void_shells() {
+    // The cube of the CadQuery export given the cylinder's shell as a void (an
+    // ORIENTED_CLOSED_SHELL with orientation false): its faces are turned inside out, so the
+    // mesh's signed volume is the cube's less the cylinder's (the divergence theorem adds
+    // oriented boundaries whatever they enclose).
+    let text = String::from_utf8(fixture("red_cube_blue_cylinder.step")).expect("ASCII");
+    let text = text.replacen(
+        "#61 = MANIFOLD_SOLID_BREP( 'red_cube', #111 );",
+        "#61 = BREP_WITH_VOIDS( 'red_cube', #111, ( #900 ) );\n#900 = ORIENTED_CLOSED_SHELL( '', *, #106, .F. );",
+        1,
+    );
+    let solids = read_step(text.as_bytes()).expect("reads");
+    let s = solids
+        .into_iter()
+        .find(|s| s.name == "red_cube")
+        .expect("the cube");
+    assert_eq!(s.solid.faces.len(), 9);
+    let m = model(s, 0.01);
+    let measured = measure(&m);
+    assert_volume("cube less cylinder", &measured, 1000.0 - PI * 25.0 * 10.0);
+}
