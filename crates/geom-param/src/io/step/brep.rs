@@ -8,8 +8,10 @@ use crate::io::step::geometry::{CurveSpec, GeometryReader, SurfaceSpec, range};
 use crate::io::step::graph::{Entity, Graph};
 use crate::io::step::pcurve::{FitInput, fit};
 use crate::io::step::units::{context_of, units_of};
+use crate::object_model::{MeshOptions, ModelError, ObjectModel};
 use crate::surfaces::reversed_surface::ReversedSurface;
 use crate::surfaces::surface::Surface;
+use crate::topology::convexity::classify_convexity;
 use crate::topology::feature::{EdgeId, FaceId, VertexId};
 use crate::topology::solid::{
     Boundary, Edge, EdgeConvexity, EdgeOn, EdgeUse, Face, FaceConvexity, Solid, Vertex,
@@ -41,8 +43,19 @@ pub struct StepSolid {
     pub name: String,
     /// The `#id` of its MANIFOLD_SOLID_BREP or BREP_WITH_VOIDS.
     pub id: u64,
-    /// The solid, in millimetres, validated.
+    /// The solid, in millimetres, validated, its convexity classified.
     pub solid: Solid,
+}
+
+impl StepSolid {
+    /// Prepares the solid for queries ([`ObjectModel::from_solid`]: convexity, meshes,
+    /// components, hulls) under its name.
+    ///
+    /// # Errors
+    /// As [`ObjectModel::from_solid`].
+    pub fn into_model(self, options: &MeshOptions) -> Result<ObjectModel, ModelError> {
+        ObjectModel::from_solid(self.name, self.solid, options)
+    }
 }
 
 struct EdgeRecord {
@@ -721,7 +734,7 @@ impl<'g, 'a> Builder<'g, 'a> {
             });
         }
         let tolerance = self.uncertainty.max(HEAL_MARGIN * self.worst_gap);
-        let solid = Solid {
+        let mut solid = Solid {
             faces,
             edges,
             vertices,
@@ -739,6 +752,7 @@ impl<'g, 'a> Builder<'g, 'a> {
             name: name.clone(),
             source,
         })?;
+        classify_convexity(&mut solid);
         Ok(StepSolid {
             name,
             id: self.solid_id,
