@@ -421,3 +421,63 @@ impl<C: Curve2> Curve2 for EndCorrected<C> {
         self.range
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! Planted answers: points of each analytic surface at known (u, v) are found again by the
+    //! closed-form start and the Newton projection (the inverse maps follow the surfaces'
+    //! conventions: STEP's u about the axis from ref_direction, the sphere's latitude, the
+    //! torus's tube angle, the cone's v along the ruling).
+
+    use super::project;
+    use crate::io::step::geometry::{SurfaceSpec, range};
+    use crate::surfaces::placement::Placement;
+    use glam::{DVec2, DVec3};
+
+    #[test]
+    fn closed_form_starts_and_projection_recover_planted_parameters() {
+        let placement = Placement::new(
+            DVec3::new(1.0, -2.0, 3.0),
+            DVec3::new(0.3, -0.4, 0.85),
+            DVec3::new(1.0, 0.2, 0.0),
+        )
+        .expect("placement");
+        let specs = [
+            SurfaceSpec::Plane(placement),
+            SurfaceSpec::Cylinder(placement, 4.0),
+            SurfaceSpec::Cone(placement, 4.0, 0.4),
+            SurfaceSpec::Sphere(placement, 4.0),
+            SurfaceSpec::Torus(placement, 6.0, 2.0),
+        ];
+        let planted = [[0.3, 0.7], [-2.5, 1.2], [2.9, -0.6], [1.4, -1.1]];
+        for spec in &specs {
+            let surface = spec
+                .build([range(-50.0, 50.0), range(-50.0, 50.0)])
+                .expect("surface");
+            for [u, v] in planted {
+                let p = surface.eval(u, v).point;
+                let [gu, gv] = spec.guess(p).expect("closed form");
+                let q = project(surface.as_ref(), p, DVec2::new(gu, gv));
+                assert!(q.point.distance(p) < 1e-12, "{spec:?} at ({u}, {v})");
+                let tau = std::f64::consts::TAU;
+                let du = (q.uv.x - u) - tau * ((q.uv.x - u) / tau).round();
+                let periodic_v = matches!(spec, SurfaceSpec::Torus(..));
+                let dv = if periodic_v {
+                    (q.uv.y - v) - tau * ((q.uv.y - v) / tau).round()
+                } else {
+                    q.uv.y - v
+                };
+                let du = if matches!(spec, SurfaceSpec::Plane(_)) {
+                    q.uv.x - u
+                } else {
+                    du
+                };
+                assert!(
+                    du.abs() < 1e-10 && dv.abs() < 1e-10,
+                    "{spec:?}: ({u}, {v}) -> {}",
+                    q.uv
+                );
+            }
+        }
+    }
+}
