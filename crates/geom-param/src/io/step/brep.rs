@@ -217,7 +217,16 @@ impl<'g, 'a> Builder<'g, 'a> {
         let (v1, v2) = (e.reference(1)?, e.reference(2)?);
         let (p1, p2) = (self.vertex(&e, v1)?, self.vertex(&e, v2)?);
         let spec = self.reader.curve(&e, e.reference(3)?)?;
-        let sense = if e.boolean(4)? { 1.0 } else { -1.0 };
+        let mut sense = if e.boolean(4)? { 1.0 } else { -1.0 };
+        // A line runs from its first vertex to its second whatever same_sense says (some
+        // exporters write it inconsistently for lines; the vertices decide).
+        if let CurveSpec::Line { direction, .. } = &spec {
+            sense = if (p2 - p1).dot(*direction) >= 0.0 {
+                1.0
+            } else {
+                -1.0
+            };
+        }
         let closed = v1 == v2 || p1.distance(p2) <= self.uncertainty;
         let (t1, t2) = match &spec {
             CurveSpec::Line { .. } => (spec.param_of(p1, sense), spec.param_of(p2, sense)),
