@@ -12,11 +12,15 @@
 //! a path to an object file relative to the scene file, or an inline object (a solid of
 //! revolution with a `profile`, or a general solid such as `{"name": "box", "rounded_box":
 //! {"half_extents": [20, 15, 10], "radius": 3}}`, see `geom_param::SolidDescription`).
-//! `options` and each of its fields may be left out.
+//! `object` may also name a STEP file (`.step` / `.stp`, relative to the scene file), with an
+//! optional `"solid"` beside it: the index (in `#id` order) or name of one of the file's
+//! solids, the first when left out. `options` and each of its fields may be left out.
 
 use crate::builtin_objects::builtin_object;
 use contact_pipeline::{ContactOptions, OptionsError};
-use geom_param::{DPose3, DQuat, DVec3, ObjectFile, ObjectFileError};
+use geom_param::{
+    DPose3, DQuat, DVec3, ObjectFile, ObjectFileError, SolidDescription, SolidSpec, StepSolidRef,
+};
 use serde_json::{Map, Value};
 use std::path::{Path, PathBuf};
 
@@ -217,7 +221,7 @@ fn numbers<const N: usize>(
 }
 
 fn scene_object(value: &Value, at: &str, base: &Path) -> Result<SceneObject, SceneError> {
-    let map = object(value, at, &["name", "object", "pose"])?;
+    let map = object(value, at, &["name", "object", "solid", "pose"])?;
     let name = match map.get("name") {
         Some(Value::String(s)) => s.clone(),
         Some(_) => return Err(wrong(&format!("{at}.name"), "a string")),
@@ -236,6 +240,9 @@ fn scene_object(value: &Value, at: &str, base: &Path) -> Result<SceneObject, Sce
                 field: "object",
             });
         }
+        Some(Value::String(reference)) if is_step(reference) => {
+            step_object(reference, map.get("solid"), at, base)?
+        }
         Some(Value::String(reference)) => load_reference(reference, &object_at, base)?,
         Some(inline @ Value::Object(_)) => ObjectFile::from_json_value(inline, &object_at)
             .map_err(|source| SceneError::Object {
@@ -249,6 +256,14 @@ fn scene_object(value: &Value, at: &str, base: &Path) -> Result<SceneObject, Sce
             ));
         }
     };
+    if map.contains_key("solid")
+        && !matches!(&description, ObjectFile::General(d) if matches!(d.spec, SolidSpec::Step { .. }))
+    {
+        return Err(wrong(
+            &format!("{at}.solid"),
+            "no `solid` field unless `object` names a STEP file",
+        ));
+    }
     let pose = match map.get("pose") {
         None => DPose3::IDENTITY,
         Some(v) => pose(v, &format!("{at}.pose"))?,
@@ -258,6 +273,58 @@ fn scene_object(value: &Value, at: &str, base: &Path) -> Result<SceneObject, Sce
         description,
         pose,
     })
+}
+
+/// True for a path with a STEP extension (`.step`, `.stp`, any case).
+fn is_step(reference: &str) -> bool {
+    Path::new(reference)
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("step") || e.eq_ignore_ascii_case("stp"))
+}
+
+/// A STEP file object: the file resolved against the scene's folder, the solid chosen by
+/// `solid` (an index or a name). The file is read when the object is built.
+fn step_object(
+    reference: &str,
+    solid: Option<&Value>,
+    at: &str,
+    base: &Path,
+) -> Result<ObjectFile, SceneError> {
+    let solid = match solid {
+        None => None,
+        Some(Value::Number(n)) => Some(StepSolidRef::Index(
+            n.as_u64()
+                .and_then(|i| usize::try_from(i).ok())
+                .ok_or_else(|| {
+                    wrong(
+                        &format!("{at}.solid"),
+                        "a solid index (an integer >= 0) or name",
+                    )
+                })?,
+        )),
+        Some(Value::String(name)) => Some(StepSolidRef::Name(name.clone())),
+        Some(_) => {
+            return Err(wrong(
+                &format!("{at}.solid"),
+                "a solid index (an integer >= 0) or name",
+            ));
+        }
+    };
+    let path = base.join(reference);
+    let name = Path::new(reference)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("step")
+        .to_string();
+    Ok(ObjectFile::General(SolidDescription {
+        name,
+        note: None,
+        spec: SolidSpec::Step {
+            file: path.to_string_lossy().into_owned(),
+            solid,
+        },
+    }))
 }
 
 fn load_reference(reference: &str, at: &str, base: &Path) -> Result<ObjectFile, SceneError> {

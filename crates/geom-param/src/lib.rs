@@ -25,6 +25,8 @@
 //! # Cargo features
 //! - `json` (off by default): [`ObjectDescription::from_json`] and
 //!   [`ObjectDescription::to_json`] via serde_json.
+//! - `step` (off by default): [`step::read_step`] reads the solids of a STEP file
+//!   (ISO 10303-21, AP203/AP214/AP242 B-rep geometry) into validated [`Solid`]s.
 
 mod builders;
 mod curves;
@@ -57,6 +59,8 @@ pub use curves::nurbs_curve2::NurbsCurve2;
 pub use geometry_error::GeometryError;
 pub use io::object_description::{LoadError, ObjectDescription};
 pub use io::object_file::{ObjectFile, ObjectFileError};
+#[cfg(feature = "step")]
+pub use io::solid_description::StepSolidRef;
 pub use io::solid_description::{SolidDescription, SolidLoadError, SolidSpec};
 pub use nurbs::MAX_DEGREE;
 pub use nurbs::basis::{BSplineBasis, BasisDerivatives};
@@ -93,6 +97,9 @@ pub use topology::solid::{
 };
 pub use topology::trim::{Trim, TrimEntry, TrimLoop, TrimNearest};
 pub use topology::validate::{TopologyError, validate};
+
+#[cfg(feature = "step")]
+pub use io::step;
 
 pub use glam::{DQuat, DVec2, DVec3};
 /// A rigid motion (rotation + translation) in f64: parry's (glamx's) `DPose3`.

@@ -31,4 +31,22 @@ pub enum BuildError {
     /// The solid fails validation.
     #[error(transparent)]
     Topology(#[from] TopologyError),
+    /// A STEP file could not be read, or holds no solid of the index or name asked for.
+    #[cfg(feature = "step")]
+    #[error("STEP file {file}: {reason}")]
+    StepFile {
+        /// The file's path.
+        file: String,
+        /// What went wrong (the system's message, or the solids the file holds).
+        reason: String,
+    },
+    /// A STEP file's content cannot be mapped into a solid.
+    #[cfg(feature = "step")]
+    #[error("STEP file {file}: {source}")]
+    Step {
+        /// The file's path.
+        file: String,
+        /// The reader's typed error (entity type and `#id`), boxed to keep the error small.
+        source: Box<crate::io::step::StepError>,
+    },
 }

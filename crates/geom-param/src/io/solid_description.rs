@@ -17,6 +17,9 @@
 //! ...]}}`. A profile segment may also be a NURBS curve in the xy plane:
 //! `{"nurbs": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1], "points": [[0, 0], [5, 3], [10, 0]],
 //! "weights": [1, 0.7, 1]}}` (weights optional, `"periodic": true` for a closed curve).
+//! With the `step` feature, a solid of a STEP file: `{"step": {"file": "part.step",
+//! "solid": 0}}` (`solid` an index or a name, the first solid when left out; a relative path
+//! is relative to the working directory, and a scene resolves it against its own folder).
 
 use crate::builders::build_error::BuildError;
 use crate::builders::extrusion::{PlanarProfile, extrude};
@@ -64,6 +67,77 @@ pub enum SolidSpec {
         /// The cross-sections, bottom to top (strictly increasing z).
         sections: Vec<EllipseSection>,
     },
+    /// A solid read from a STEP file ([`crate::step::read_step`]).
+    #[cfg(feature = "step")]
+    Step {
+        /// The file's path.
+        file: String,
+        /// Which of the file's solids: its index or name; the first when `None`.
+        #[cfg_attr(
+            feature = "json",
+            serde(default, skip_serializing_if = "Option::is_none")
+        )]
+        solid: Option<StepSolidRef>,
+    },
+}
+
+/// Which solid of a STEP file: by index (in `#id` order) or by name.
+#[cfg(feature = "step")]
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(
+    feature = "json",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(untagged)
+)]
+pub enum StepSolidRef {
+    /// The index among the file's solids.
+    Index(usize),
+    /// The B-rep's name.
+    Name(String),
+}
+
+/// Reads solid `which` of the STEP file at `file`.
+#[cfg(feature = "step")]
+fn read_step_solid(file: &str, which: Option<&StepSolidRef>) -> Result<Solid, BuildError> {
+    let fail = |reason: String| BuildError::StepFile {
+        file: file.to_string(),
+        reason,
+    };
+    let limit = crate::io::step::part21::MAX_INPUT_BYTES as u64;
+    let meta = std::fs::metadata(file).map_err(|e| fail(e.to_string()))?;
+    if !meta.is_file() || meta.len() > limit {
+        return Err(fail(format!("not a regular file of at most {limit} bytes")));
+    }
+    let bytes = std::fs::read(file).map_err(|e| fail(e.to_string()))?;
+    let solids = crate::io::step::read_step(&bytes).map_err(|source| BuildError::Step {
+        file: file.to_string(),
+        source: Box::new(source),
+    })?;
+    let names = || {
+        solids
+            .iter()
+            .enumerate()
+            .map(|(i, s)| format!("{i}: {}", s.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let index = match which {
+        None => 0,
+        Some(StepSolidRef::Index(i)) => *i,
+        Some(StepSolidRef::Name(name)) => solids
+            .iter()
+            .position(|s| &s.name == name)
+            .ok_or_else(|| fail(format!("no solid named {name:?} (solids: {})", names())))?,
+    };
+    if index >= solids.len() {
+        return Err(fail(format!("no solid {index} (solids: {})", names())));
+    }
+    let count = solids.len();
+    solids
+        .into_iter()
+        .nth(index)
+        .map(|s| s.solid)
+        .ok_or_else(|| fail(format!("no solid {index} (the file holds {count})")))
 }
 
 /// A named general solid, not yet built.
@@ -116,6 +190,8 @@ impl SolidSpec {
             } => tube(*outer_radius, *inner_radius, *length),
             Self::Extrusion { profile, z } => extrude(profile, z[0], z[1]),
             Self::Loft { sections } => loft(sections),
+            #[cfg(feature = "step")]
+            Self::Step { file, solid } => read_step_solid(file, solid.as_ref()),
         }
     }
 }
