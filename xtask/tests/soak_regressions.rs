@@ -981,13 +981,16 @@ fn a_witness_through_the_material_is_no_penetration() {
 /// B's rim top at once (A's point within 3 chordal errors of it): not mutually nearest, all
 /// dropped, and the pair is reported separated. The oracle finds nothing at all (its
 /// documented limit: no witness on an edge), so the true state is not known here; 1e-9 mm away
-/// one of the 0.76 mm pairs starts its trace just beyond 2e from the rim top, passes, and the
-/// state is a penetration: the check's threshold makes the state jump.
+/// one of the 0.76 mm pairs starts its trace just beyond 2e from the rim top, passed, and the
+/// state was a penetration: the check's threshold made the state jump. Since the pipeline
+/// takes intersecting meshes whose seeds all ended uncertified (or unconverged) below delta1
+/// as a penetration, both poses are penetrating, with a witness point and no depth.
 /// FIXME(issue 18): the region's witness against B's rim top (A's corner below it) is never
 /// seeded (a retry from A's point and B's nearest boundary point was tried and converged to
-/// the same rejected pairs); today's behaviour is asserted.
+/// the same rejected pairs), so no negative-distance contact is reported; today's behaviour is
+/// asserted.
 #[test]
-fn a_rim_corner_inside_the_other_rim_is_dropped_today() {
+fn a_rim_corner_inside_the_other_rim_is_a_penetration_without_depth() {
     let (pipeline, objects) = setup();
     let pose_b = pose(
         [-53.698150213220075, -146.05232233608382, 72.10710717249533],
@@ -1007,11 +1010,9 @@ fn a_rim_corner_inside_the_other_rim_is_dropped_today() {
         &pose_b,
         &mut QueryScratch::default(),
     );
-    assert_eq!(report.state, PairState::Separated, "{report:?}");
+    assert_eq!(report.state, PairState::Penetration, "{report:?}");
     assert_eq!(report.stats.mesh_overlaps, 1, "{report:?}");
     assert!(report.stats.through_material >= 1, "{report:?}");
-    assert_eq!(
-        report.stats.through_material, report.stats.refined,
-        "{report:?}"
-    );
+    assert!(report.contacts.is_empty(), "{report:?}");
+    assert!(!report.penetration_witnesses.is_empty(), "{report:?}");
 }
