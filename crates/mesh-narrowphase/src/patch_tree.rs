@@ -10,8 +10,9 @@
 //!
 //! Leaves are *pieces* of mesh triangles: a triangle much longer than it is wide (a straight
 //! profile line gives triangles as long as the whole face) is bisected along its longest edge
-//! until no piece is more than [`MAX_ASPECT`] times longer than the triangle is wide, so that every leaf is
-//! spatially compact and its normals and curvature are sampled at its own corners.
+//! until no piece is more than [`MAX_ASPECT`] times longer than the triangle is wide (or than
+//! the mesh's chordal error, for slivers narrower than that), so that every leaf is spatially
+//! compact and its normals and curvature are sampled at its own corners.
 
 use crate::normal_cone::{NormalBand, NormalCone};
 use geom_param::{
@@ -156,7 +157,8 @@ pub struct PatchTree {
 }
 
 /// Largest ratio of a piece's longest edge to its triangle's height over the triangle's
-/// longest edge: longer pieces are bisected at the midpoint of their longest edge.
+/// longest edge (or to the mesh's chordal error where that is larger): longer pieces are
+/// bisected at the midpoint of their longest edge.
 pub const MAX_ASPECT: f64 = 4.0;
 
 /// Most bisections of one triangle (2^12 pieces at most).
@@ -235,7 +237,7 @@ impl PatchTree {
             let Some(corners) = corners_of(mesh, tri) else {
                 continue;
             };
-            split_triangle(t as u32, corners, &mut pieces);
+            split_triangle(t as u32, corners, inflation, &mut pieces);
         }
         for (k, piece) in pieces.iter_mut().enumerate() {
             let item = piece_item(mesh, solid, piece, k as u32, &mut apex_normals);
@@ -311,15 +313,22 @@ fn longest_edge(c: &[DVec3; 3]) -> ((usize, usize), f64) {
 
 /// Appends the pieces of triangle `t` (corners `corners`): with h the triangle's height over
 /// its longest edge (its width), pieces are bisected at the midpoint of their longest edge
-/// while that edge exceeds [`MAX_ASPECT`] h. (Measured against the triangle's width rather than
-/// each piece's own, so that the needle-like pieces at the tip of a fan triangle, as narrow as
-/// they are short, stop splitting.)
-fn split_triangle(t: u32, corners: [DVec3; 3], pieces: &mut Vec<Piece>) {
+/// while that edge exceeds [`MAX_ASPECT`] max(h, `min_width`) (mm). (Measured against the
+/// triangle's width rather than each piece's own, so that the needle-like pieces at the tip of
+/// a fan triangle, as narrow as they are short, stop splitting.)
+///
+/// `min_width` is the mesh's chordal error: a sliver narrower than that is, at the mesh's
+/// resolution, a segment, and pieces [`MAX_ASPECT`] chordal errors long are as compact as the
+/// leaves of a triangle that wide. Without it a degenerate sliver (1e-10 mm wide and 1 mm
+/// long at the pole of a sphere patch) never reaches the aspect and is cut into
+/// 2^[`MAX_BISECTIONS`] pieces. The pieces only subdivide the triangle, so the tree's bounds
+/// hold whatever the width used.
+fn split_triangle(t: u32, corners: [DVec3; 3], min_width: f64, pieces: &mut Vec<Piece>) {
     let (_, longest) = longest_edge(&corners);
     let twice_area = (corners[1] - corners[0])
         .cross(corners[2] - corners[0])
         .length();
-    let limit = MAX_ASPECT * twice_area / longest;
+    let limit = MAX_ASPECT * (twice_area / longest).max(min_width);
     let mut stack = vec![(
         Piece {
             triangle: t,
@@ -940,5 +949,97 @@ impl CurvatureTensor {
             xz * s.x + yz * s.y + zz * s.z,
         );
         t.dot(cs)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn twice_area(c: &[DVec3; 3]) -> f64 {
+        (c[1] - c[0]).cross(c[2] - c[0]).length()
+    }
+
+    /// The pieces of `corners` under `min_width`, checked against the triangle: each piece's
+    /// corners are the triangle's points at the piece's barycentric coordinates, and the pieces
+    /// tile it (their areas add up to the triangle's, their barycentric areas to the unit
+    /// triangle's).
+    fn tiled_pieces(corners: [DVec3; 3], min_width: f64) -> Vec<Piece> {
+        let mut pieces = Vec::new();
+        split_triangle(7, corners, min_width, &mut pieces);
+        let scale = corners.iter().map(|c| c.length()).fold(0.0, f64::max);
+        for piece in &pieces {
+            assert_eq!(piece.triangle, 7);
+            for (b, c) in piece.barycentric.iter().zip(&piece.corners) {
+                let at = corners[0] * b.x + corners[1] * b.y + corners[2] * b.z;
+                assert!(at.distance(*c) <= 1e-12 * scale, "{at} {c}");
+                assert!((b.x + b.y + b.z - 1.0).abs() <= 1e-12, "{b}");
+            }
+        }
+        // Areas agree up to the rounding of the cross products (1e-12 of the coordinates'
+        // magnitude times the longest edge, per piece): a sliver's area is that small itself.
+        let area: f64 = pieces.iter().map(|p| twice_area(&p.corners)).sum();
+        let whole = twice_area(&corners);
+        let (_, longest) = longest_edge(&corners);
+        let rounding = 1e-12 * scale * longest * pieces.len() as f64;
+        assert!(
+            (area - whole).abs() <= 1e-9 * whole + rounding,
+            "{area} against {whole}"
+        );
+        let barycentric: f64 = pieces.iter().map(|p| twice_area(&p.barycentric)).sum();
+        let unit = twice_area(&[DVec3::X, DVec3::Y, DVec3::Z]);
+        assert!((barycentric - unit).abs() <= 1e-9 * unit, "{barycentric}");
+        pieces
+    }
+
+    /// A long triangle wider than `min_width` (60 mm by 1 mm) is cut until no piece is longer
+    /// than [`MAX_ASPECT`] times its width, as without the floor.
+    #[test]
+    fn a_long_triangle_is_cut_to_its_width() {
+        let corners = [
+            DVec3::ZERO,
+            DVec3::new(60.0, 0.0, 0.0),
+            DVec3::new(59.0, 1.0, 0.0),
+        ];
+        let pieces = tiled_pieces(corners, 0.05);
+        assert!(pieces.len() >= 15, "{}", pieces.len());
+        for piece in &pieces {
+            let (_, longest) = longest_edge(&piece.corners);
+            assert!(longest <= MAX_ASPECT * 1.0, "{longest}");
+        }
+    }
+
+    /// A sliver 1e-10 mm wide and 1 mm long (as at the pole of a sphere patch) is cut into
+    /// pieces no longer than [`MAX_ASPECT`] times `min_width`, and no shorter than half that (a
+    /// bisected piece keeps half its parent's longest edge): a handful, where without the floor
+    /// it is cut into 2^[`MAX_BISECTIONS`] pieces, all still slivers.
+    #[test]
+    fn a_sliver_is_cut_to_the_width_floor_only() {
+        let corners = [
+            DVec3::new(1.0, 2.0, 3.0),
+            DVec3::new(2.0, 2.0, 3.0),
+            DVec3::new(1.999, 2.0, 3.0 + 1e-10),
+        ];
+        let min_width = 0.05;
+        let limit = MAX_ASPECT * min_width;
+        let pieces = tiled_pieces(corners, min_width);
+        for piece in &pieces {
+            let (_, longest) = longest_edge(&piece.corners);
+            assert!(longest <= limit && longest > 0.5 * limit, "{longest}");
+        }
+        assert!(pieces.len() <= 64, "{}", pieces.len());
+        let unfloored = tiled_pieces(corners, 0.0);
+        assert_eq!(unfloored.len(), 1 << MAX_BISECTIONS);
+    }
+
+    /// A triangle with no area (all corners equal, or collinear) stays whole whatever the floor.
+    #[test]
+    fn a_degenerate_triangle_stays_whole() {
+        let p = DVec3::new(1.0, -2.0, 0.5);
+        for min_width in [0.0, 0.05] {
+            let mut pieces = Vec::new();
+            split_triangle(0, [p, p, p], min_width, &mut pieces);
+            assert_eq!(pieces.len(), 1);
+        }
     }
 }
