@@ -11,14 +11,13 @@
 #![allow(missing_docs)]
 
 use contact_pipeline::{
-    CoherenceOptions, ContactOptions, ContactPipeline, FrameKind, PairCache, PairReport,
-    PreparedObject, QueryScratch,
+    CoherenceOptions, ContactPipeline, FrameKind, PairCache, PairReport, PreparedObject,
+    QueryScratch,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
-use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectFile};
-use serde_json::Value;
+use fixture_scene::{FixtureScene, load_scene};
+use geom_param::{DPose3, DQuat};
 use std::hint::black_box;
-use std::path::Path;
 use std::time::Duration;
 
 const SCENES: [&str; 4] = [
@@ -31,6 +30,10 @@ const SCENES: [&str; 4] = [
 /// Frames of one back-and-forth roll.
 const FRAMES: usize = 320;
 
+#[path = "../tests/support/fixture_scene.rs"]
+mod fixture_scene;
+
+/// A fixture scene and B's trajectory.
 struct Scene {
     pipeline: ContactPipeline,
     a: PreparedObject,
@@ -39,48 +42,14 @@ struct Scene {
     trajectory: Vec<DPose3>,
 }
 
-fn numbers(value: &Value) -> Vec<f64> {
-    value
-        .as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
-}
-
 fn load(name: &str) -> Scene {
-    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures");
-    let read = |path: &Path| std::fs::read_to_string(path).expect("fixture");
-    let scene: Value =
-        serde_json::from_str(&read(&fixtures.join(format!("scenes/{name}.json")))).expect("json");
-    let option = |key: &str| scene["options"][key].as_f64().expect("option");
-    let pipeline = ContactPipeline::new(ContactOptions {
-        margin: option("margin"),
-        delta1: option("delta1"),
-        delta2: option("delta2"),
-        chordal_tolerance: option("chordal_tolerance"),
-        ..ContactOptions::default()
-    })
-    .expect("options");
-    let object = |k: usize| {
-        let entry = &scene["objects"][k];
-        let file = entry["object"].as_str().expect("object name");
-        let text = read(&fixtures.join(format!("objects/{file}.json")));
-        let model = ObjectFile::from_json(&text)
-            .expect("object")
-            .build(&MeshOptions {
-                chordal_tolerance: option("chordal_tolerance"),
-            })
-            .expect("builds");
-        let q = numbers(&entry["pose"]["rotation"]);
-        let t = numbers(&entry["pose"]["translation"]);
-        let pose = DPose3 {
-            rotation: DQuat::from_xyzw(q[0], q[1], q[2], q[3]),
-            translation: DVec3::new(t[0], t[1], t[2]),
-        };
-        (pipeline.prepare(model), pose)
-    };
-    let ((a, pose_a), (b, pose_b)) = (object(0), object(1));
+    let FixtureScene {
+        pipeline,
+        a,
+        b,
+        pose_a,
+        pose_b,
+    } = load_scene(name);
     let start = pipeline
         .query(&a, &pose_a, &b, &pose_b, &mut QueryScratch::default())
         .expect("query");

@@ -8,14 +8,13 @@
 #![allow(missing_docs)]
 
 use bvh_hybrid::BroadPhase;
-use contact_pipeline::{ContactOptions, ContactPipeline, PreparedObject, QueryScratch};
+use contact_pipeline::{ContactPipeline, PreparedObject, QueryScratch};
 use criterion::{Criterion, criterion_group, criterion_main};
 use exact_refine::Refiner;
-use geom_param::{ComponentId, DPose3, DQuat, DVec3, ObjectDescription, Seed};
+use fixture_scene::{FixtureScene, load_scene};
+use geom_param::{ComponentId, DPose3, Seed};
 use mesh_narrowphase::{ComponentRef, ContactBand, MeshOutput, MeshPhase, MeshVerdict};
-use serde_json::Value;
 use std::hint::black_box;
-use std::path::Path;
 use std::time::Duration;
 
 const SCENES: [&str; 4] = [
@@ -31,46 +30,17 @@ struct Scene {
     poses: [DPose3; 2],
 }
 
-fn numbers(value: &Value) -> Vec<f64> {
-    value
-        .as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
-}
+#[path = "../tests/support/fixture_scene.rs"]
+mod fixture_scene;
 
 fn load(name: &str) -> Scene {
-    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures");
-    let read = |path: &Path| std::fs::read_to_string(path).expect("fixture");
-    let scene: Value =
-        serde_json::from_str(&read(&fixtures.join(format!("scenes/{name}.json")))).expect("json");
-    let option = |key: &str| scene["options"][key].as_f64().expect("option");
-    let pipeline = ContactPipeline::new(ContactOptions {
-        margin: option("margin"),
-        delta1: option("delta1"),
-        delta2: option("delta2"),
-        chordal_tolerance: option("chordal_tolerance"),
-        ..ContactOptions::default()
-    })
-    .expect("options");
-    let object = |k: usize| {
-        let entry = &scene["objects"][k];
-        let file = entry["object"].as_str().expect("object name");
-        let text = read(&fixtures.join(format!("objects/{file}.json")));
-        let description = ObjectDescription::from_json(&text).expect("object");
-        let q = numbers(&entry["pose"]["rotation"]);
-        let t = numbers(&entry["pose"]["translation"]);
-        let pose = DPose3 {
-            rotation: DQuat::from_xyzw(q[0], q[1], q[2], q[3]),
-            translation: DVec3::new(t[0], t[1], t[2]),
-        };
-        let prepared = pipeline
-            .prepare_description(&description)
-            .expect("prepares");
-        (prepared, pose)
-    };
-    let ((a, pose_a), (b, pose_b)) = (object(0), object(1));
+    let FixtureScene {
+        pipeline,
+        a,
+        b,
+        pose_a,
+        pose_b,
+    } = load_scene(name);
     Scene {
         pipeline,
         objects: [a, b],

@@ -6,70 +6,14 @@
 //! points moved by less than a few steps) keeps its id.
 
 use contact_pipeline::{
-    CoherenceOptions, ContactOptions, ContactPipeline, FrameKind, PairCache, PairReport,
-    PreparedObject, QueryError, QueryScratch,
+    CoherenceOptions, FrameKind, PairCache, PairReport, QueryError, QueryScratch,
 };
-use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectFile};
-use std::path::Path;
+use geom_param::{DPose3, DQuat, DVec3};
 
-struct Scene {
-    pipeline: ContactPipeline,
-    a: PreparedObject,
-    b: PreparedObject,
-    pose_a: DPose3,
-    pose_b: DPose3,
-}
+#[path = "support/fixture_scene.rs"]
+mod fixture_scene;
 
-fn numbers(value: &serde_json::Value) -> Vec<f64> {
-    value
-        .as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
-}
-
-fn load(name: &str) -> Scene {
-    let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures");
-    let read = |path: &Path| std::fs::read_to_string(path).expect("fixture");
-    let scene: serde_json::Value =
-        serde_json::from_str(&read(&fixtures.join(format!("scenes/{name}.json")))).expect("json");
-    let option = |key: &str| scene["options"][key].as_f64().expect("option");
-    let pipeline = ContactPipeline::new(ContactOptions {
-        margin: option("margin"),
-        delta1: option("delta1"),
-        delta2: option("delta2"),
-        chordal_tolerance: option("chordal_tolerance"),
-        ..ContactOptions::default()
-    })
-    .expect("options");
-    let object = |k: usize| {
-        let entry = &scene["objects"][k];
-        let file = entry["object"].as_str().expect("object name");
-        let text = read(&fixtures.join(format!("objects/{file}.json")));
-        let file = ObjectFile::from_json(&text).expect("object");
-        let model = file
-            .build(&MeshOptions {
-                chordal_tolerance: option("chordal_tolerance"),
-            })
-            .expect("builds");
-        let q = numbers(&entry["pose"]["rotation"]);
-        let t = numbers(&entry["pose"]["translation"]);
-        let pose = DPose3 {
-            rotation: DQuat::from_xyzw(q[0], q[1], q[2], q[3]),
-            translation: DVec3::new(t[0], t[1], t[2]),
-        };
-        (pipeline.prepare(model), pose)
-    };
-    let ((a, pose_a), (b, pose_b)) = (object(0), object(1));
-    Scene {
-        pipeline,
-        a,
-        b,
-        pose_a,
-        pose_b,
-    }
-}
+use fixture_scene::{FixtureScene as Scene, load_scene as load};
 
 /// A xorshift generator: seeded, reproducible, no dependency.
 struct Rng(u64);
