@@ -26,6 +26,7 @@ fn quick_report_writes_every_section_and_figure() {
         "### Growth with the number of components",
         "### Stage 2: proxy regions against normal cones",
         "## 4. Pictures",
+        "## 5. Many-object worlds",
     ] {
         assert!(text.contains(heading), "missing section {heading:?}");
     }

@@ -43,6 +43,10 @@ pub struct ReportSettings {
     pub growth_components: Vec<usize>,
     /// Picture size (pixels).
     pub picture_size: (u32, u32),
+    /// Object counts of the many-object worlds table.
+    pub world_counts: Vec<usize>,
+    /// Steps timed per world (medians).
+    pub world_steps: usize,
 }
 
 impl ReportSettings {
@@ -68,6 +72,8 @@ impl ReportSettings {
             growth_tolerances: vec![0.2, 0.1, 0.05, 0.02, 0.01],
             growth_components: vec![4, 16, 64, 256],
             picture_size: (960, 720),
+            world_counts: vec![10, 100, 1000],
+            world_steps: 20,
         }
     }
 
@@ -94,6 +100,8 @@ impl ReportSettings {
             growth_tolerances: vec![0.2],
             growth_components: vec![4],
             picture_size: (160, 120),
+            world_counts: vec![10],
+            world_steps: 2,
         }
     }
 }
@@ -153,6 +161,13 @@ pub fn write_report(root: &Path, out_dir: &Path, settings: &ReportSettings) -> R
     eprintln!("report: stage 2 paths");
     let stage2 = stage2_comparison::measure(root, settings.tables.repetitions * 10)?;
 
+    eprintln!("report: worlds");
+    let worlds = crate::world_scene::world_table(
+        &crate::fixture_objects(),
+        &settings.world_counts,
+        settings.world_steps,
+    )?;
+
     eprintln!("report: pictures");
     let pictures = settings
         .paper_scenes
@@ -175,6 +190,7 @@ pub fn write_report(root: &Path, out_dir: &Path, settings: &ReportSettings) -> R
         growth_components: &growth_components,
         stage2: &stage2,
         pictures: &pictures,
+        worlds: &worlds,
     });
     write(&out_dir.join("REPORT.md"), text.as_bytes())
 }
