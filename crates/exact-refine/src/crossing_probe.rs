@@ -14,25 +14,29 @@
 //! The surfaces themselves can. Two surfaces that meet with tangent planes tilted by α cross
 //! there, and to second order (curvature scale κ) the overlap lens reaches about α / κ to one
 //! side along the tilt direction t (the other normal's component in the own tangent plane).
-//! [`overlap_near`] moves each face point along ±t by α / κ x {1, 4, 16, 64} (at most 1 / κ),
+//! An edge that meets a face at an angle α out of the face's tangent plane crosses it, and its
+//! part inside the other solid reaches about α / κ along its tangent to one side.
+//! [`overlap_near`] moves each face point along ±t, and each edge point along ±its tangent,
+//! by α / κ x {1, 4, 16, 64} (at most 1 / κ),
 //! projects the moved point onto the other side's feature, and keeps the deepest moved point
 //! that lies behind the other side's outward normal at its projection by more than rounding: a
 //! point of one boundary inside the other solid, which proves the surfaces cross there. The
 //! caller then solves for the penetration witness from it.
 
 use crate::feature_eval::{Body, Loc};
-use crate::newton::{EPS, State, TOUCH_ANGLE, slide_on_face};
+use crate::newton::{EPS, State, TOUCH_ANGLE, slide_on_edge, slide_on_face};
 use crate::options::NewtonOptions;
 use crate::projection::project;
 
 /// Probe lengths, in units of the predicted lens size α / κ.
 const PROBE_MULTIPLES: [f64; 4] = [1.0, 4.0, 16.0, 64.0];
 
-/// The deepest probe near `state` (see the module docs): a pair (a moved face point and its
+/// The deepest probe near `state` (see the module docs): a pair (a moved face or edge point and its
 /// projection onto the other side's feature, A's location first) whose moved point lies behind
 /// the other side's outward normal, and that signed distance (mm, below −1e3 ε x scale).
 /// `None` when no probe does, or neither point is on a face with the other's normal tilted by
-/// more than [`TOUCH_ANGLE`].
+/// more than [`TOUCH_ANGLE`] nor on an edge whose tangent leaves the other's tangent plane by
+/// more than that.
 pub(crate) fn overlap_near(
     a: &Body,
     b: &Body,
@@ -55,17 +59,34 @@ pub(crate) fn overlap_near(
         ) else {
             continue;
         };
-        // The other normal, negated, in the own tangent plane: length sin α.
-        let tilt = -n_other + n_own * n_other.dot(n_own);
-        let sine = tilt.length();
-        if own_eval.n != 2 || sine.is_nan() || sine <= TOUCH_ANGLE {
+        // The direction to probe along and the sine of the crossing angle. On a face: the
+        // other normal, negated, in the own tangent plane (length sin α). On an edge: its
+        // unit tangent, which meets the other's tangent plane at asin |t̂ · n_other|.
+        let (direction, sine) = match own_eval.n {
+            2 => {
+                let tilt = -n_other + n_own * n_other.dot(n_own);
+                let sine = tilt.length();
+                (tilt / sine, sine)
+            }
+            1 => {
+                let tangent = own_eval.d[0].normalize_or_zero();
+                (tangent, tangent.dot(n_other).abs())
+            }
+            _ => continue,
+        };
+        if sine.is_nan() || sine <= TOUCH_ANGLE {
             continue;
         }
         let lens = sine / curvature;
         for multiple in PROBE_MULTIPLES {
             let length = (multiple * lens).min(1.0 / curvature);
             for sign in [1.0, -1.0] {
-                let moved = slide_on_face(own, &own_loc, own_eval, tilt * (sign * length / sine));
+                let step = direction * (sign * length);
+                let moved = if own_eval.n == 2 {
+                    slide_on_face(own, &own_loc, own_eval, step)
+                } else {
+                    slide_on_edge(own, &own_loc, own_eval, step)
+                };
                 let point = own.eval(&moved).point;
                 let on_other = project(other, other_loc, point, base_scale, options).state;
                 let Some(n) = other.outward_at(&on_other.la, &on_other.ea) else {

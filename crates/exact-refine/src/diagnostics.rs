@@ -78,28 +78,56 @@ pub(crate) fn diagnose(
     } else {
         rounding + 0.5 * kappa * point_error_estimate * point_error_estimate
     };
-    // At a gap within its own error estimate the sign of d, hence the index the second-order
-    // test wants (0 separated, the witness's when penetrating), is not known (whichever
-    // `State::penetrating` says), and the eigenvalues it counts (|d| x relative curvature along the
-    // sliding directions) are rounding. The pair is then judged as at d = 0, where the Hessian
-    // is JᵀJ (positive semidefinite) and f = 0 its global minimum: a touch when the normals are
-    // opposed. Stationarity bounds the angle between d and each normal by the residual over
-    // |d|, so at such a gap a crossing at a small angle passes this test too: the refiner then
-    // probes the surfaces next to the pair (`crossing_probe`) before calling it a touch.
+    // At a gap within what the solve can tell from zero (`gap_within_error`) the sign of d,
+    // hence the index the second-order test wants (0 separated, the witness's when
+    // penetrating), is not known (whichever `State::penetrating` says), and the eigenvalues it
+    // counts (|d| x relative curvature along the sliding directions, plus the square of the
+    // crossing angle) do not tell a touch from a crossing. The pair is then judged as at d = 0, where f = 0 is the global minimum of
+    // f = ½|d|²: a touch when the normals are opposed, to within how far they turn over the
+    // point error (curvature scale x `point_error_estimate`; never more than stationarity
+    // allows). A crossing at an angle below that passes this test too: the refiner then probes
+    // the surfaces next to the pair (`crossing_probe`) before calling it a touch. Where the
+    // normal cones cannot tell (two edges, a vertex), the second-order test decides as above.
     let gap = state.d.length();
-    let touch = converged
-        && gap <= error_estimate
-        && is_touch(a, b, state, residual / gap.max(f64::MIN_POSITIVE));
+    let within_error = gap_within_error(state, error_estimate, point_error_estimate);
+    let misalignment =
+        (state.curvature * point_error_estimate).min(residual / gap.max(f64::MIN_POSITIVE));
+    let touch = if converged && within_error {
+        is_touch(a, b, state, misalignment)
+    } else {
+        None
+    };
+    let is_local_minimum = converged && touch.unwrap_or(second_order);
     RefineDiagnostics {
         iterations: solution.iterations,
         gradient_norm: state.gradient_norm(),
         condition,
         converged,
-        is_local_minimum: converged && (second_order || touch),
+        is_local_minimum,
         error_estimate,
         point_error_estimate,
         status,
     }
+}
+
+/// Whether the gap |d| of `state` is within what the solve can tell from zero: its
+/// `error_estimate` (mm) plus the gap's rate along the features times `point_error_estimate`.
+///
+/// Stationarity bounds the gap's rate along the parameters (per mm of motion: the component of
+/// d's direction along the features' tangents) by residual / |d|. At a minimum that rate is
+/// rounding and `error_estimate` (the curvature's share, ½κδ²) is the whole error. Where the
+/// features cross at a small angle α, the solve stops stationary to tolerance at
+/// |d| ≈ α x point error, not at a minimum of the gap (an edge 5e-3 rad into a face stopped at
+/// d = 8e-11 mm), and the gap errs by up to α x point error.
+pub(crate) fn gap_within_error(
+    state: &State,
+    error_estimate: f64,
+    point_error_estimate: f64,
+) -> bool {
+    let gap = state.d.length();
+    let residual = state.gradient_norm() + state.gradient_floor();
+    let slope = (residual / gap.max(f64::MIN_POSITIVE)).min(1.0);
+    gap <= error_estimate + slope * point_error_estimate
 }
 
 /// The smallest curvature of the gap function (1/mm) over the directions of the pair's

@@ -1,7 +1,7 @@
 //! [`NewtonRefiner`]: the default [`Refiner`] (seed projection, then safeguarded Newton).
 
 use crate::crossing_probe::overlap_near;
-use crate::diagnostics::diagnose;
+use crate::diagnostics::{diagnose, gap_within_error};
 use crate::feature_eval::{Body, Frame};
 use crate::newton::{Outcome, Solution, State, retry_on_sides, solve};
 use crate::options::NewtonOptions;
@@ -100,8 +100,9 @@ impl Refiner for NewtonRefiner {
 }
 
 /// The final answer from a pair solve's `solution`: its signed distance, normal and
-/// diagnostics; but a pair judged a local minimum whose gap is within its own error estimate
-/// is a touch only if the surfaces do not cross next to it ([`overlap_near`]). Where they do,
+/// diagnostics; but a converged pair whose gap is within its own error estimate is a touch
+/// only if its normals are opposed (the diagnostics' test) and the surfaces do not cross next
+/// to it ([`overlap_near`]). Where they do,
 /// the answer is the penetration witness solved from the overlapping probe when that
 /// converges deeper to a witness that passes the second-order test, and otherwise the pair
 /// itself. (A lens so shallow that its witness does not converge is within the distance's
@@ -117,7 +118,13 @@ fn check_touch(
     let (distance, normal) = signed_distance(a, b, &solution.state);
     let diagnostics = diagnose(a, b, &solution, normal);
     let state = &solution.state;
-    if !diagnostics.is_local_minimum || state.d.length() > diagnostics.error_estimate {
+    if !diagnostics.converged
+        || !gap_within_error(
+            state,
+            diagnostics.error_estimate,
+            diagnostics.point_error_estimate,
+        )
+    {
         return (solution, distance, normal, diagnostics);
     }
     let Some((la, lb, _)) = overlap_near(a, b, state, base, options) else {
