@@ -1,4 +1,4 @@
-//! An edge crossing a face at a small angle, found by `cargo xtask soak 10000 --seed 4002`
+//! An edge crossing a face, found by `cargo xtask soak 10000 --seed 4002`
 //! (flip property): a pair built as an edge-face contact, moved along its normal to
 //! delta1 ± eps. The moved pair stays a critical pair at exactly the moved distance, so at
 //! delta1 - eps the pair penetrates by 1e-3 mm + eps.
@@ -125,5 +125,26 @@ fn a_rim_edge_crossing_a_paperweight_at_a_small_angle_is_a_penetration() {
             -0.1231660040342644,
         ],
         1.5e-7,
+    );
+}
+
+/// pencil-goblet 17133886288276728148: the goblet's rim edge 7 cutting the pencil's face 6.
+/// Before: the seed on the goblet's top face 2.8e-4 mm from the rim reached the crossing of
+/// the two faces, and the nested solver from the crossing's lens went to the pencil's apex,
+/// 100.9 mm through the goblet (dropped by the witness check): the pair was separated on both
+/// sides of delta1. Now the ridge is tried from its nearest point first.
+#[test]
+fn a_rim_edge_cutting_a_pencil_next_to_the_seed_face_is_a_penetration() {
+    check_moved_below_delta1(
+        "pencil",
+        "goblet",
+        [-42.98573817854665, -54.543539111248705, 193.9889920890143],
+        [
+            0.7572917093196592,
+            0.6469280679138651,
+            0.08601055635582777,
+            -0.024403404194973066,
+        ],
+        1.775e-7,
     );
 }

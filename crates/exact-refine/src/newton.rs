@@ -23,7 +23,7 @@ use crate::feature_switch::{
     snap_within_distance,
 };
 use crate::options::NewtonOptions;
-use crate::penetration::{edge_pair_witness, saddle_newton, solve_penetration};
+use crate::penetration::{edge_face_witness, edge_pair_witness, saddle_newton, solve_penetration};
 use crate::sym_eigen::{SymEigen, sym_eigen};
 use geom_param::{DVec3, FeatureLocation, ParamRange};
 use std::f64::consts::PI;
@@ -290,7 +290,9 @@ pub(crate) fn solve(
     // opposed) without ever seeing a penetrating pair: restart once inside the lens.
     match crossing_restart(a, b, &first.state) {
         Some((ra, rb)) if first.outcome == Outcome::Converged => {
-            if let Some(mut fast) = nearest_edges_witness(a, b, &first.state, base_scale, options) {
+            let fast = nearest_edges_witness(a, b, &first.state, base_scale, options)
+                .or_else(|| ridge_witness(a, b, &first.state, (ra, rb), base_scale, options));
+            if let Some(mut fast) = fast {
                 fast.iterations += first.iterations;
                 return fast;
             }
@@ -328,6 +330,41 @@ fn nearest_edges_witness(
         return None;
     }
     edge_pair_witness(a, b, ea, eb, base_scale, options)
+}
+
+/// The witness of a ridge cutting the other side's face ([`edge_face_witness`]), from a
+/// crossing `state` with one point moved onto its face's nearest boundary edge
+/// ([`onto_nearest_edge`]) and the other left on its face; each side tried where the edge is
+/// within the lens that the crossing restart (`restart`) would search, the move of either of
+/// its points. `None` when neither start converges to a witness.
+fn ridge_witness(
+    a: &Body,
+    b: &Body,
+    state: &State,
+    restart: (Loc, Loc),
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Option<Solution> {
+    let lens = a
+        .eval(&restart.0)
+        .point
+        .distance(state.ea.point)
+        .max(b.eval(&restart.1).point.distance(state.eb.point));
+    let within = |body: &Body, moved: Loc, from: DVec3| {
+        moved.is_some() && body.eval(&moved).point.distance(from) <= lens
+    };
+    let ea = onto_nearest_edge(a, state.la);
+    let eb = onto_nearest_edge(b, state.lb);
+    let mut starts = Vec::with_capacity(2);
+    if ea != state.la && within(a, ea, state.ea.point) {
+        starts.push((ea, state.lb));
+    }
+    if eb != state.lb && within(b, eb, state.eb.point) {
+        starts.push((state.la, eb));
+    }
+    starts
+        .into_iter()
+        .find_map(|(sa, sb)| edge_face_witness(a, b, sa, sb, base_scale, options))
 }
 
 /// A penetration solve that did not converge, restarted from other features of its end: first

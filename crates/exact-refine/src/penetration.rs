@@ -21,6 +21,7 @@
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 
+use crate::crossing_probe::overlap_near;
 use crate::dense_solve::{cholesky, cholesky_solve, lu_solve};
 use crate::feature_eval::{Body, Loc};
 use crate::feature_switch::{reenter, settle, snap_to_sides};
@@ -290,6 +291,56 @@ pub(crate) fn edge_pair_witness(
         return None;
     }
     let mut witness = saddle_newton(a, b, &closest.state, base_scale, options)?;
+    witness.iterations += closest.iterations;
+    Some(witness)
+}
+
+/// The witness between an edge and the other side's face, from `la`, `lb` (one an edge, the
+/// other a face): f minimised on those two features (no re-entry), then [`saddle_newton`] from
+/// the penetrating pair that reaches, or, where the minimisation ends on the crossing of the
+/// edge with the face (f = 0), from the deepest probe of [`overlap_near`] along the edge,
+/// falling back to the nested solver from that probe. `None` unless one converges to a
+/// witness: saddle Newton's own acceptance tests, or for the nested solver a stationary pair
+/// on the same edge and face (from a ridge's probe it can otherwise end on other features
+/// with a converged outer loop but a gradient of 0.25: a goblet's rim against a paperweight).
+///
+/// Why: where a ridge cuts a face (a goblet's rim edge 1e-3 mm into a pencil's cone), a solve
+/// that starts on the ridge's face next to it reaches the crossing of the two faces, and the
+/// nested solver from the lens of that crossing can wander to a far critical pair (the pencil's
+/// apex 100 mm through the goblet); from the ridge itself the witness is 2-4 steps away.
+pub(crate) fn edge_face_witness(
+    a: &Body,
+    b: &Body,
+    la: Loc,
+    lb: Loc,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Option<Solution> {
+    let kind = |l: &Loc| match l {
+        Some(FeatureLocation::Edge { .. }) => 1,
+        Some(FeatureLocation::Face { .. }) => 2,
+        _ => 0,
+    };
+    if kind(&la) * kind(&lb) != 2 {
+        return None;
+    }
+    let closest = minimize(a, b, la, lb, base_scale, options, Reentry::Never);
+    let start = match closest.outcome {
+        Outcome::Penetrating => closest.state,
+        Outcome::Converged => {
+            let (pa, pb, _) = overlap_near(a, b, &closest.state, base_scale, options)?;
+            State::new(a, b, pa, pb, base_scale)
+        }
+        _ => return None,
+    };
+    let feature = |l: &Loc| l.map(|l| l.feature());
+    let mut witness = saddle_newton(a, b, &start, base_scale, options).or_else(|| {
+        let deep = solve_penetration(a, b, start.la, start.lb, base_scale, options);
+        let kept = feature(&deep.state.la) == feature(&start.la)
+            && feature(&deep.state.lb) == feature(&start.lb);
+        (deep.outcome == Outcome::Converged && kept && deep.state.stationary(options))
+            .then_some(deep)
+    })?;
     witness.iterations += closest.iterations;
     Some(witness)
 }
