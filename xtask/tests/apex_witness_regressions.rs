@@ -1,0 +1,77 @@
+//! A cone's apex inside the other solid, found by `cargo xtask soak 10000 --seed 5002` (state
+//! mismatch): the pencil's tip 1.19e-3 mm into the vase. The witness is on the tip's cone
+//! 0.15 mm from the apex, not at the apex.
+//!
+//! Before: the pair solve left the apex vertex into the cone at the apex itself, where the
+//! penetration solver's roles (the side with fewer parameters outer, A on a tie) made the cone
+//! the inner side; the projection onto it stayed at the apex, which has no normal, and the
+//! solve stalled. Nothing converged and the meshes (chordal error 0.05 mm) did not intersect,
+//! so the pair was reported separated. Now a tie keeps the roles the solver already has.
+//! The test checks the answer against the depth the pose was built with (the generator moved B
+//! along a critical pair's normal to exactly that depth) and the witness invariant: the
+//! connecting vector along both faces' normals.
+
+use contact_pipeline::{ContactOptions, ContactPipeline, PairState, QueryScratch};
+use geom_param::{DPose3, DQuat, DVec3, FeatureLocation};
+use xtask::soak::run::prepare_objects;
+
+/// vase-pencil 17230691994160057033 (pose kind: penetrating, target depth below).
+#[test]
+fn a_pencil_tip_inside_a_vase_is_a_penetration_witnessed_on_its_cone() {
+    let pipeline = ContactPipeline::new(ContactOptions::default()).expect("default options");
+    let objects = prepare_objects(&pipeline).expect("fixture objects build");
+    let (vase, pencil) = (&objects["vase"], &objects["pencil"]);
+    let pose_b = DPose3 {
+        translation: DVec3::new(-95.79443250769857, 158.95407547662185, 68.77108916726917),
+        rotation: DQuat::from_xyzw(
+            0.6364378388680839,
+            -0.45341172630784116,
+            0.5181345633284674,
+            0.34770858198768234,
+        ),
+    };
+    let report = pipeline
+        .query(
+            vase,
+            &DPose3::IDENTITY,
+            pencil,
+            &pose_b,
+            &mut QueryScratch::default(),
+        )
+        .expect("unit quaternion");
+    assert_eq!(report.state, PairState::Penetration, "{report:?}");
+    let deepest = report
+        .contacts
+        .iter()
+        .min_by(|x, y| x.distance.total_cmp(&y.distance))
+        .expect("a penetration contact");
+    let built = -0.001185650711623764;
+    assert!(
+        (deepest.distance - built).abs() < 1e-9,
+        "depth {} against the built {built}",
+        deepest.distance
+    );
+    let normal_of = |solid: &geom_param::Solid, location: FeatureLocation, pose: &DPose3| {
+        let FeatureLocation::Face { id, u, v } = location else {
+            panic!("a face-face witness, got {location:?}");
+        };
+        pose.rotation
+            * solid
+                .face(id)
+                .surface
+                .normal(u, v)
+                .expect("a tangent plane")
+    };
+    let na = normal_of(&vase.model.solid, deepest.location_a, &DPose3::IDENTITY);
+    let nb = normal_of(&pencil.model.solid, deepest.location_b, &pose_b);
+    let connecting = (deepest.point_b - deepest.point_a).normalize();
+    // Penetrating: B's point lies behind A's outward normal, and the normals are opposed.
+    assert!(
+        connecting.dot(na) < -1.0 + 1e-9,
+        "{connecting} against A's {na}"
+    );
+    assert!(
+        connecting.dot(nb) > 1.0 - 1e-9,
+        "{connecting} against B's {nb}"
+    );
+}
