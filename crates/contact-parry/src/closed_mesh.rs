@@ -4,10 +4,11 @@
 use crate::error::ShapeError;
 use geom_param::ObjectModel;
 use glam::DVec3;
+use parry3d_f64::math::Pose;
 use parry3d_f64::shape::{TriMesh, TriMeshFlags};
 use std::collections::HashMap;
 
-/// An object's whole boundary as one welded, closed, outward-oriented triangle mesh (object
+/// An object's whole boundary as one welded, closed, outward-oriented triangle mesh (shape
 /// frame, mm), within `chordal_error` of the exact surface (the largest of the component
 /// meshes' measured errors). Parry's [`TriMesh`] is built with `ORIENTED` (pseudo-normals:
 /// inside/outside tests) and `FIX_INTERNAL_EDGES`.
@@ -40,10 +41,12 @@ impl ClosedMesh {
     /// that every directed edge has exactly one reverse edge (closed and consistently oriented)
     /// and that the enclosed volume (divergence theorem, sum of a·(b×c)/6) is positive.
     ///
+    /// The vertices are then moved by `placement` (the object's frame in the shape's frame).
+    ///
     /// # Errors
     /// [`ShapeError::EmptyMesh`], [`ShapeError::NotClosed`], [`ShapeError::NotOutward`], or
     /// [`ShapeError::Parry`] when parry refuses the mesh.
-    pub fn weld(model: &ObjectModel) -> Result<Self, ShapeError> {
+    pub fn weld(model: &ObjectModel, placement: &Pose) -> Result<Self, ShapeError> {
         let name = || model.name.clone();
         let mut index: HashMap<[u64; 3], u32> = HashMap::new();
         let mut positions: Vec<DVec3> = Vec::new();
@@ -98,6 +101,9 @@ impl ClosedMesh {
                 name: name(),
                 volume,
             });
+        }
+        for p in &mut positions {
+            *p = *placement * *p;
         }
         let trimesh = TriMesh::with_flags(
             positions,

@@ -158,9 +158,13 @@ impl<D> ExactDispatcher<D> {
                 .unwrap_or_else(std::sync::PoisonError::into_inner)
         };
         let mut scratch = pool().pop().unwrap_or_default();
-        let result =
-            a.pipeline()
-                .query(a.object(), &Pose::IDENTITY, b.object(), pos12, &mut scratch);
+        let result = a.pipeline().query(
+            a.object(),
+            a.placement(),
+            b.object(),
+            &(*pos12 * *b.placement()),
+            &mut scratch,
+        );
         pool().push(scratch);
         self.counters.note(DispatchPath::Exact);
         result.ok()

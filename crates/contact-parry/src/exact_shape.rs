@@ -11,7 +11,7 @@ use parry3d_f64::math::{Pose, Real, Vector};
 use parry3d_f64::query::{
     PointProjection, PointQuery, Ray, RayCast, RayCullingMode, RayIntersection,
 };
-use parry3d_f64::shape::{FeatureId, Shape, ShapeType, TypedShape};
+use parry3d_f64::shape::{Ball, Cuboid, FeatureId, Shape, ShapeType, TypedShape};
 use std::sync::Arc;
 
 /// An exact solid (a [`PreparedObject`] of the default pipeline) as a parry shape, with the
@@ -46,9 +46,22 @@ use std::sync::Arc;
 pub struct ExactShape {
     pipeline: Arc<ContactPipeline>,
     object: Arc<PreparedObject>,
+    placement: Pose,
+    /// The parry primitive this shape is exactly (its mass properties are then the closed
+    /// form's), if any.
+    primitive: Option<Primitive>,
     mesh: Arc<ClosedMesh>,
     local_aabb: Aabb,
     ccd_thickness: f64,
+}
+
+/// A parry primitive an exact shape is exactly (centred in the shape's frame, mm).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Primitive {
+    /// A ball of this radius.
+    Ball(f64),
+    /// A cuboid of these half extents.
+    Cuboid(DVec3),
 }
 
 impl std::fmt::Debug for ExactShape {
@@ -73,7 +86,21 @@ impl ExactShape {
         pipeline: Arc<ContactPipeline>,
         object: Arc<PreparedObject>,
     ) -> Result<Self, ShapeError> {
-        let mesh = ClosedMesh::weld(&object.model)?;
+        Self::placed(pipeline, object, Pose::IDENTITY)
+    }
+
+    /// As [`Self::new`], with the object placed in the shape's frame by `placement` (shape
+    /// point = placement × object point): the shape's frame, in which parry gives poses and
+    /// takes points, need not be the object's.
+    ///
+    /// # Errors
+    /// As [`Self::new`].
+    pub fn placed(
+        pipeline: Arc<ContactPipeline>,
+        object: Arc<PreparedObject>,
+        placement: Pose,
+    ) -> Result<Self, ShapeError> {
+        let mesh = ClosedMesh::weld(&object.model, &placement)?;
         let e = mesh.chordal_error;
         let aabb = mesh.trimesh.local_aabb();
         let local_aabb = Aabb::new(aabb.mins - Vector::splat(e), aabb.maxs + Vector::splat(e));
@@ -81,6 +108,8 @@ impl ExactShape {
         Ok(Self {
             pipeline,
             object,
+            placement,
+            primitive: None,
             mesh: Arc::new(mesh),
             local_aabb,
             ccd_thickness,
@@ -99,6 +128,13 @@ impl ExactShape {
         Self::new(pipeline, object)
     }
 
+    /// This shape with the mass properties of `primitive` (a parry ball or cuboid it is
+    /// exactly, in the shape's frame), in place of the mesh's.
+    pub(crate) fn with_primitive(mut self, primitive: Primitive) -> Self {
+        self.primitive = Some(primitive);
+        self
+    }
+
     /// The pipeline that prepared the object (queries between two exact shapes need the same
     /// one, compared by pointer).
     #[must_use]
@@ -112,7 +148,13 @@ impl ExactShape {
         &self.object
     }
 
-    /// The closed mesh (object frame, mm) that mass properties, point projections and ray
+    /// The object's frame in the shape's frame (identity unless built with [`Self::placed`]).
+    #[must_use]
+    pub fn placement(&self) -> &Pose {
+        &self.placement
+    }
+
+    /// The closed mesh (shape frame, mm) that mass properties, point projections and ray
     /// casts are computed on, and that [`crate::BeyondReach::MeshApproximation`] hands to
     /// parry.
     #[must_use]
@@ -211,7 +253,10 @@ impl Shape for ExactShape {
 
     /// The prepared object's ball: holds the exact surface.
     fn compute_local_bounding_sphere(&self) -> BoundingSphere {
-        BoundingSphere::new(self.object.bounding_centre, self.object.bounding_radius)
+        BoundingSphere::new(
+            self.placement * self.object.bounding_centre,
+            self.object.bounding_radius,
+        )
     }
 
     fn clone_dyn(&self) -> Box<dyn Shape> {
@@ -225,13 +270,22 @@ impl Shape for ExactShape {
     }
 
     /// Of the closed mesh, by the divergence theorem, at `density` (mass per mm³): within
-    /// [`ExactShape::volume_error_bound`] × density of the exact solid's mass.
+    /// [`ExactShape::volume_error_bound`] × density of the exact solid's mass. Exact (parry's
+    /// closed forms) for the shapes of [`crate::exact_ball`] and [`crate::exact_cuboid`]: a
+    /// ball's mesh puts its centre of mass about 5e-4 mm off its centre, enough for a ball at
+    /// rest on a plane to start rolling.
     fn mass_properties(&self, density: Real) -> MassProperties {
-        MassProperties::from_trimesh(
-            density,
-            self.mesh.trimesh.vertices(),
-            self.mesh.trimesh.indices(),
-        )
+        match self.primitive {
+            Some(Primitive::Ball(radius)) => Ball::new(radius).mass_properties(density),
+            Some(Primitive::Cuboid(half_extents)) => {
+                Cuboid::new(half_extents).mass_properties(density)
+            }
+            None => MassProperties::from_trimesh(
+                density,
+                self.mesh.trimesh.vertices(),
+                self.mesh.trimesh.indices(),
+            ),
+        }
     }
 
     fn shape_type(&self) -> ShapeType {

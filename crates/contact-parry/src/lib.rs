@@ -36,4 +36,4 @@ pub use dispatcher::{BeyondReach, DispatcherOptions, ExactDispatcher};
 pub use error::ShapeError;
 pub use exact_shape::ExactShape;
 pub use feature_ids::packed_feature;
-pub use primitives::{exact_ball, exact_cuboid};
+pub use primitives::{BALL_AXIS, exact_ball, exact_cuboid};

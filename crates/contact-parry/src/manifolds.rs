@@ -115,9 +115,9 @@ where
         let ws = exact_workspace(workspace);
         let frame = a.pipeline().query_coherent(
             a.object(),
-            &Pose::IDENTITY,
+            a.placement(),
             b.object(),
-            pos12,
+            &(*pos12 * *b.placement()),
             &self.options.coherence,
             &mut ws.cache,
             &mut ws.scratch,

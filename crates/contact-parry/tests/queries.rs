@@ -263,3 +263,72 @@ fn shapes_it_cannot_represent_are_never_answered_wrongly() {
     );
     let _: &dyn Shape = &ExactShape::clone(&ball);
 }
+
+/// A ball resting on a box face, touching (gap 0 or ±1e-9 mm) at points 1e-4 to 1e-2 rad from
+/// the pole of a sphere revolved about z: Stage 3 reaches its iteration limit there and the
+/// contact is lost (FIXME: exact-refine, Newton next to a pole of a revolved face). The
+/// dispatcher's balls put their poles along `BALL_AXIS`, so the same touches along z are found.
+#[test]
+fn touches_near_a_sphere_pole() {
+    use contact_parry::{BALL_AXIS, exact_cuboid};
+    use contact_pipeline::QueryScratch;
+    use geom_param::{ObjectModel, Profile, SegmentSpec};
+    let pipeline = pipeline();
+    let r = 10.0;
+    let profile = Profile::new(&[SegmentSpec::Arc {
+        center: [0.0, 0.0],
+        from: [0.0, -r],
+        to: [0.0, r],
+        ccw: true,
+    }])
+    .expect("half circle");
+    let model = ObjectModel::from_profile(
+        "z-ball",
+        profile,
+        &geom_param::MeshOptions {
+            chordal_tolerance: 0.05,
+        },
+    )
+    .expect("model");
+    let z_ball = ExactShape::from_model(Arc::clone(&pipeline), model).expect("shape");
+    let placed = exact_ball(Arc::clone(&pipeline), r).expect("ball");
+    assert!((placed.placement().rotation * Vector::Z).distance(BALL_AXIS.normalize()) < 1e-12);
+    let cuboid = exact_cuboid(Arc::clone(&pipeline), Vector::new(100.0, 100.0, 5.0)).expect("box");
+    let mut scratch = QueryScratch::default();
+    let (mut lost_z, mut lost_placed, mut total) = (0, 0, 0);
+    for k in 0..30 {
+        let theta = 1e-4 * 10f64.powf(2.0 * f64::from(k) / 29.0);
+        let rot =
+            glam::DQuat::from_rotation_z(0.7 * f64::from(k)) * glam::DQuat::from_rotation_y(theta);
+        for gap in [0.0, 1e-9, -1e-9] {
+            total += 1;
+            for (shape, lost) in [(&z_ball, &mut lost_z), (&placed, &mut lost_placed)] {
+                // The shape frame turned by `rot`: the object frame is that times the placement.
+                let pose = Pose::from_parts(
+                    Vector::new(1.0, -2.0, r + gap),
+                    rot * shape.placement().rotation,
+                );
+                let report = pipeline
+                    .query(
+                        cuboid.object(),
+                        &Pose::translation(0.0, 0.0, -5.0),
+                        shape.object(),
+                        &pose,
+                        &mut scratch,
+                    )
+                    .expect("query");
+                if report.contacts.is_empty() {
+                    *lost += 1;
+                } else {
+                    assert!(report.contacts[0].distance.abs() < 1e-6);
+                }
+            }
+        }
+    }
+    println!("touches lost: {lost_z} of {total} about z, {lost_placed} placed");
+    assert!(
+        lost_z > 0,
+        "FIXME fixed? near-pole touches are found now: drop the placement"
+    );
+    assert_eq!(lost_placed, 0);
+}
