@@ -1,6 +1,6 @@
-//! A cone's apex inside the other solid, found by `cargo xtask soak 10000 --seed 5002` (state
-//! mismatch): the pencil's tip 1.19e-3 mm into the vase. The witness is on the tip's cone
-//! 0.15 mm from the apex, not at the apex.
+//! A cone's apex inside the other solid. First found by `cargo xtask soak 10000 --seed 5002`
+//! (state mismatch): the pencil's tip 1.19e-3 mm into the vase. The witness is on the tip's
+//! cone 0.15 mm from the apex, not at the apex.
 //!
 //! Before: the pair solve left the apex vertex into the cone at the apex itself, where the
 //! penetration solver's roles (the side with fewer parameters outer, A on a tie) made the cone
@@ -73,5 +73,70 @@ fn a_pencil_tip_inside_a_vase_is_a_penetration_witnessed_on_its_cone() {
     assert!(
         connecting.dot(nb) > 1.0 - 1e-9,
         "{connecting} against B's {nb}"
+    );
+}
+
+/// bowl-pencil 2424808255236008729 (generator failure of `soak 1000 --general --seed 3102`,
+/// where the touch bisection stopped): the pencil's apex 0.2 mm into the bowl's wall, the
+/// witness the apex itself. Before: every start of the penetration solver had the bowl's face
+/// as the outer side (a tie of two faces), whose points have no nearest point at the apex to
+/// project to; the solve stalled on the cone next to the apex and the pair was a penetration
+/// without depth (by the pipeline's fallback). Now the roles are also tried swapped. Checked
+/// against the independent oracle's witness (`contact-oracle`, -0.20336308952448356 mm, apex
+/// against the bowl's face 2) and the vertex-face invariant: the connecting vector along the
+/// face's normal.
+#[test]
+fn a_pencil_apex_inside_a_bowl_wall_is_witnessed_at_the_apex() {
+    let pipeline = ContactPipeline::new(ContactOptions::default()).expect("default options");
+    let objects = prepare_objects(&pipeline).expect("fixture objects build");
+    let (bowl, pencil) = (&objects["bowl"], &objects["pencil"]);
+    let pose_b = DPose3 {
+        translation: DVec3::new(-180.14679567852968, 111.53309155746604, 34.179528335226195),
+        rotation: DQuat::from_xyzw(
+            -0.7143758296144936,
+            -0.10550552968131541,
+            -0.5840421552019154,
+            -0.3707162232980517,
+        ),
+    };
+    let report = pipeline
+        .query(
+            bowl,
+            &DPose3::IDENTITY,
+            pencil,
+            &pose_b,
+            &mut QueryScratch::default(),
+        )
+        .expect("unit quaternion");
+    assert_eq!(report.state, PairState::Penetration, "{report:?}");
+    let deepest = report
+        .contacts
+        .iter()
+        .min_by(|x, y| x.distance.total_cmp(&y.distance))
+        .expect("a penetration contact with its depth");
+    let oracle = -0.20336308952448356;
+    assert!(
+        (deepest.distance - oracle).abs() < 1e-9,
+        "depth {} against the oracle's {oracle}",
+        deepest.distance
+    );
+    assert!(
+        matches!(deepest.location_b, FeatureLocation::Vertex { .. }),
+        "{deepest:?}"
+    );
+    let FeatureLocation::Face { id, u, v } = deepest.location_a else {
+        panic!("the bowl's face: {deepest:?}");
+    };
+    let na = bowl
+        .model
+        .solid
+        .face(id)
+        .surface
+        .normal(u, v)
+        .expect("a tangent plane");
+    let connecting = (deepest.point_b - deepest.point_a).normalize();
+    assert!(
+        connecting.dot(na) < -1.0 + 1e-9,
+        "{connecting} against {na}"
     );
 }

@@ -23,7 +23,9 @@ use crate::feature_switch::{
     snap_within_distance,
 };
 use crate::options::NewtonOptions;
-use crate::penetration::{edge_face_witness, edge_pair_witness, saddle_newton, solve_penetration};
+use crate::penetration::{
+    edge_face_witness, edge_pair_witness, saddle_newton, solve_penetration, solve_penetration_from,
+};
 use crate::sym_eigen::{SymEigen, sym_eigen};
 use geom_param::{DVec3, FeatureLocation, ParamRange};
 use std::f64::consts::PI;
@@ -424,6 +426,19 @@ pub(crate) fn retry_on_sides(
     let mut iterations = deep.iterations;
     for (ra, rb) in starts {
         let again = solve_penetration(a, b, ra, rb, base_scale, options);
+        iterations += again.iterations;
+        if again.outcome == Outcome::Converged {
+            return Solution {
+                iterations,
+                ..again
+            };
+        }
+    }
+    // Last, two faces with the roles swapped (B outer): where the deepest point is one side's
+    // apex (a pencil's tip 0.2 mm into a bowl), A's points have no nearest point at the apex
+    // to project to, and only the apex's side as the outer one reaches it.
+    if deep.state.na == 2 && deep.state.n == 4 {
+        let again = solve_penetration_from(a, b, (la, lb), false, base_scale, options);
         iterations += again.iterations;
         if again.outcome == Outcome::Converged {
             return Solution {

@@ -42,6 +42,19 @@ pub(crate) fn solve_penetration(
     base_scale: f64,
     options: &NewtonOptions,
 ) -> Solution {
+    solve_penetration_from(a, b, (la, lb), true, base_scale, options)
+}
+
+/// [`solve_penetration`] with the roles of a tie at the start chosen: A outer when
+/// `a_outer_on_tie`, else B.
+pub(crate) fn solve_penetration_from(
+    a: &Body,
+    b: &Body,
+    (la, lb): (Loc, Loc),
+    a_outer_on_tie: bool,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Solution {
     let mut steps = 0u32;
     // The outer gradient is only as good as the inner projection (its error divided by the
     // inner Hessian, which is below 1 inside a convex solid): project a thousand times tighter.
@@ -88,7 +101,7 @@ pub(crate) fn solve_penetration(
         if na == nb { current } else { na < nb }
     };
     let start = State::new(a, b, settle(a, la), settle(b, lb), base_scale);
-    let mut built_as = roles(&start, true);
+    let mut built_as = roles(&start, a_outer_on_tie);
     let mut cur = pair(start.la, start.lb, built_as, &mut steps);
     let (max_radius, mut radius) = cur.trust_radii();
     let mut switches = 0;
