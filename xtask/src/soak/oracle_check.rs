@@ -398,6 +398,7 @@ mod tests {
                 is_local_minimum: true,
                 error_estimate: 1e-13,
                 point_error_estimate: 1e-12,
+                gap_curvature: 0.1,
                 status: RefineStatus::Converged,
             },
         });
