@@ -65,6 +65,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod closed_form;
+mod conditioning;
 mod cross_check;
 mod error;
 mod feature_moves;
@@ -78,6 +79,7 @@ mod oracle;
 mod penetration;
 mod polish;
 mod posed;
+mod regions;
 mod report;
 mod sampling;
 mod trim_grid;
@@ -86,4 +88,4 @@ pub use closed_form::{ClosedFormScene, ExpectedContact};
 pub use error::OracleError;
 pub use options::OracleOptions;
 pub use oracle::{SAMPLE_BUDGET, find_contacts};
-pub use report::{CrossCheck, OracleContact, OracleReport, OracleState};
+pub use report::{CrossCheck, OracleContact, OracleReport, OracleState, RegionMember};
