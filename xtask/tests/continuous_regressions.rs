@@ -194,9 +194,10 @@ fn a_pencil_along_a_bowl_bottom_is_one_touch() {
 /// (face 0, B's plane z = 0). The oracle listed five more "minima" along the rim at 1.2e-7 to
 /// 6.0e-7 mm (missed 5). Truth (closed form): a rim point at angle θ is
 /// (q(θ) − p0) · n = −p0 · n + 26 (n_x cos θ + n_y sin θ) from the plane (n: B's outward
-/// normal −z_B, p0: B's origin), one minimum on the circle at θ* = atan2(−n_y, −n_x). The
-/// members lie on B's plane, so their path on B's face is checked against the distance of B's
-/// points to the rim circle (the vase's nearest feature there).
+/// normal −z_B, p0: B's origin), one minimum on the circle at θ* = atan2(−n_y, −n_x), the gap's
+/// curvature along the rim |n_xy| / 26. The members lie on B's plane, so their path on B's
+/// face is checked against the distance of B's points to the rim circle (the vase's nearest
+/// feature there).
 #[test]
 fn a_rim_on_a_flat_bottom_is_one_touch() {
     let pose_b = pose(
@@ -226,6 +227,14 @@ fn a_rim_on_a_flat_bottom_is_one_touch() {
     let lowest = (touch - pose_b.translation).dot(n);
     let c = report.contacts[0];
     assert!((c.distance - lowest).abs() < 1e-12, "{c:?} {lowest:e}");
+    // Along the rim the gap rises as 26 |n_xy| (1 − cos(s / 26)) ≈ |n_xy| s² / 52: the gap's
+    // curvature is |n_xy| / 26.
+    let kappa = n.truncate().length() / 26.0;
+    assert!(
+        (c.diagnostics.gap_curvature - kappa).abs() <= 1e-3 * kappa,
+        "{:e} vs {kappa:e}",
+        c.diagnostics.gap_curvature
+    );
     assert!(
         c.point_a.distance(touch) <= c.diagnostics.point_error_estimate,
         "{c:?} {touch:?}"

@@ -155,21 +155,12 @@ fn run(
         let outcome = local_minima::polish(a, b, start, spacing, &limits);
         match outcome {
             Outcome::Minimum(p) => {
-                // The sign from A's outward side at the feature the point is on: a point held
-                // on a face's side (an edge of a face without trim) has the edge's side, which
-                // the face's own normal there does not give.
-                let snap = 10.0 * options.tolerance;
-                let held = match a.location(p.pair.fa, p.pair.a, p.pair.held_a, snap) {
-                    FeatureLocation::Face { .. } => Held::Face,
-                    FeatureLocation::Edge { id, t } => Held::Edge {
-                        edge: id,
-                        t,
-                        use_index: 0,
-                    },
-                    FeatureLocation::Vertex { id } => Held::Vertex(id),
+                let signed = |p: &Polished| {
+                    let negative = is_negative(a, p, options.tolerance);
+                    p.eval.r.length() * if negative { -1.0 } else { 1.0 }
                 };
-                let na = a.sign_normal(p.pair.fa, p.pair.a, held);
-                let negative = na.is_some_and(|n| (p.eval.pb.point - p.eval.pa.point).dot(n) < 0.0);
+                let p = local_minima::deeper_corner(a, b, *p, &limits, signed);
+                let negative = is_negative(a, &p, options.tolerance);
                 if through_material(&p.eval, &ta, &tb, options.tolerance) {
                     continue;
                 }
@@ -248,6 +239,24 @@ fn run(
         samples,
         size,
     })
+}
+
+/// Whether a polished minimum is a penetration: B's point behind A's outward side at the
+/// feature A's point is on (a point held on a face's side, an edge of a face without trim, has
+/// the edge's side, which the face's own normal there does not give).
+fn is_negative(a: &PosedSolid, p: &Polished, tolerance: f64) -> bool {
+    let snap = 10.0 * tolerance;
+    let held = match a.location(p.pair.fa, p.pair.a, p.pair.held_a, snap) {
+        FeatureLocation::Face { .. } => Held::Face,
+        FeatureLocation::Edge { id, t } => Held::Edge {
+            edge: id,
+            t,
+            use_index: 0,
+        },
+        FeatureLocation::Vertex { id } => Held::Vertex(id),
+    };
+    let na = a.sign_normal(p.pair.fa, p.pair.a, held);
+    na.is_some_and(|n| (p.eval.pb.point - p.eval.pa.point).dot(n) < 0.0)
 }
 
 fn points(samples: &[Sample]) -> Vec<glam::DVec3> {

@@ -4,7 +4,7 @@
 //! curve), not by the oracle.
 
 use contact_oracle::{OracleOptions, OracleReport, find_contacts};
-use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectDescription, Solid};
+use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectFile, Solid};
 
 fn solid(name: &str) -> Solid {
     let path = format!(
@@ -12,7 +12,7 @@ fn solid(name: &str) -> Solid {
         env!("CARGO_MANIFEST_DIR")
     );
     let text = std::fs::read_to_string(&path).expect("fixture file");
-    ObjectDescription::from_json(&text)
+    ObjectFile::from_json(&text)
         .expect("object JSON")
         .build(&MeshOptions::default())
         .expect("object builds")
@@ -240,4 +240,38 @@ fn a_rim_touching_a_plane_is_one_minimum() {
         assert!((m.contact.distance - plane(p)).abs() < 1e-12, "{m:?}");
         assert!(rise > 1e-8, "{m:?}: a member is no minimum, rise {rise:e}");
     }
+}
+
+/// bracket-paperweight 4792506523713132914 of `soak 300 --general --seed 2026`, built as a
+/// touch at −9.3e-10 mm: the bracket's corner at its origin (vertex 0) pokes a hair into the
+/// paperweight's flat bottom (face 0, the plane z = 0 of B, material above it). The oracle
+/// reported +1.3e-10 mm on the bracket's edge 0, 1.6e-9 mm from the corner: a point of the
+/// curve where the corner's edges cross the plane (f = ½|r|² vanishes there and the cone test
+/// calls it a touch). Closed form: the corner is (p0 − 0) · n below the plane, n = B's outward
+/// normal −z_B, p0 = B's origin; that is the witness, and the oracle now reports it.
+#[test]
+fn a_corner_a_hair_inside_a_plane_is_witnessed_at_the_corner() {
+    let pose_b = pose(
+        [-6.20324367429038, 1.0766358227045587, 7.716520569669497],
+        [
+            0.5704223424291541,
+            0.6602469039450488,
+            -0.4653729731888312,
+            -0.14872919321371214,
+        ],
+    );
+    let n = pose_b.rotation * -DVec3::Z;
+    let depth = (DVec3::ZERO - pose_b.translation).dot(n);
+    // The corner's foot lies on B's bottom disk (radius 32).
+    let foot = pose_b.rotation.inverse() * (-depth * n - pose_b.translation);
+    assert!(foot.truncate().length() < 32.0, "{foot:?}");
+    assert!(depth < -9e-10 && depth > -1.1e-9, "{depth:e}");
+    let report = oracle("bracket", "paperweight", &pose_b);
+    let c = report
+        .contacts
+        .iter()
+        .min_by(|x, y| x.distance.total_cmp(&y.distance))
+        .unwrap_or_else(|| panic!("{report:?}"));
+    assert!((c.distance - depth).abs() < 1e-13, "{c:?} {depth:e}");
+    assert!(c.point_a.length() < 1e-12, "{c:?}");
 }
