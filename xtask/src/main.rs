@@ -25,8 +25,22 @@ fn workspace_root() -> PathBuf {
         .unwrap_or_default()
 }
 
+/// Splits "a-b" into two fixture object names; names may hold a dash themselves
+/// ("rounded-box-vase"), so the split is at the dash where both sides are known objects (the
+/// first dash when none is).
 fn parse_pair(text: &str) -> Result<(String, String), String> {
-    text.split_once('-')
+    let names: Vec<String> = xtask::fixture_objects()
+        .iter()
+        .map(|o| o.name().to_string())
+        .collect();
+    let known = |n: &str| names.iter().any(|m| m == n);
+    let splits = text
+        .match_indices('-')
+        .map(|(i, _)| (&text[..i], &text[i + 1..]));
+    splits
+        .clone()
+        .find(|(a, b)| known(a) && known(b))
+        .or_else(|| splits.clone().next())
         .map(|(a, b)| (a.to_string(), b.to_string()))
         .ok_or(format!("bad pair `{text}`: expected a-b"))
 }

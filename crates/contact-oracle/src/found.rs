@@ -1,5 +1,6 @@
 //! A polished pair turned into a contact: signed distance, normal, and merging of duplicates.
 
+use crate::conditioning::point_error_bound;
 use crate::kdtree::KdTree;
 use crate::polish::{Eval, Polished};
 use crate::posed::PosedSolid;
@@ -15,13 +16,16 @@ use geom_param::FeatureLocation;
 /// the points coincide (within `snap`), otherwise the connecting vector, and for two
 /// coinciding points otherwise placed A's outward direction there
 /// ([`PosedSolid::sign_normal`]). Locations within `snap` (mm) of an edge or
-/// vertex of a trimmed face are reported on it ([`PosedSolid::location`]).
+/// vertex of a trimmed face are reported on it ([`PosedSolid::location`]). The point error
+/// bound is the oracle's own, from the pair's conditioning and the stationarity `tolerance`
+/// (mm) it was polished to ([`point_error_bound`]).
 pub(crate) fn contact(
     a: &PosedSolid,
     b: &PosedSolid,
     polished: &Polished,
     negative: bool,
     snap: f64,
+    tolerance: f64,
 ) -> OracleContact {
     let Polished {
         pair,
@@ -72,6 +76,7 @@ pub(crate) fn contact(
             .or(touching_normal)
             .unwrap_or(glam::DVec3::Z),
     };
+    let point_error_estimate = point_error_bound(polished, distance, normal, tolerance);
     OracleContact {
         point_a: pa,
         point_b: pb,
@@ -85,6 +90,7 @@ pub(crate) fn contact(
         location_b,
         residual,
         iterations,
+        point_error_estimate,
     }
 }
 

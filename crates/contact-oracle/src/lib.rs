@@ -36,7 +36,16 @@
 //!    descent moves over trims, edges and vertices as the polish does (not across the sides
 //!    of a face without trim onto an edge shared with another such face), so a witness may lie
 //!    inside a trimmed face, on an edge or at a corner.
-//! 5. The whole search runs again at spacing / √2 on a shifted grid and the two sets are
+//! 5. Regions (`regions`): an accepted point joined to a lower one by a straight path on a
+//!    face holding both points of one side, along which the signed distance of the walking
+//!    point to the other solid never exceeds the higher one's by more than 5 x tolerance, is no
+//!    separate minimum: it is listed as a member of the lower one's region
+//!    ([`OracleReport::members`]), which is reported once. This is what makes a continuous
+//!    contact (flat on flat) one answer, and what removes points the polish accepted on the
+//!    slope beside a touch (its residual test is absolute, so at |r| ~ 1e-7 mm any slope
+//!    passes). Each reported point carries the oracle's own error bound from the conditioning
+//!    of its pair (`conditioning`, [`OracleContact::point_error_estimate`]).
+//! 6. The whole search runs again at spacing / √2 on a shifted grid and the two sets are
 //!    compared ([`CrossCheck`]).
 //!
 //! Frames: everything reported is in the world frame, lengths in mm.
@@ -59,12 +68,14 @@
 //! vertex and an edge or vertex counts as a crossing; the cones of edges and corners are
 //! read from the adjacent faces' tangent directions (at a corner from its edges), exact for
 //! convex edges and corners whose faces are less than 180° apart; a non-isolated minimum (a
-//! circle or segment of equal distance) yields an arbitrary set of points on it.
+//! circle or segment of equal distance) is one region whose points are an arbitrary set on it,
+//! and minima on different faces of both solids are never joined into one region.
 
 // Index loops mirror the matrix notation of the small dense systems (H_ij, g_k).
 #![allow(clippy::needless_range_loop)]
 
 pub mod closed_form;
+mod conditioning;
 mod cross_check;
 mod error;
 mod feature_moves;
@@ -78,6 +89,7 @@ mod oracle;
 mod penetration;
 mod polish;
 mod posed;
+mod regions;
 mod report;
 mod sampling;
 mod trim_grid;
@@ -86,4 +98,4 @@ pub use closed_form::{ClosedFormScene, ExpectedContact};
 pub use error::OracleError;
 pub use options::OracleOptions;
 pub use oracle::{SAMPLE_BUDGET, find_contacts};
-pub use report::{CrossCheck, OracleContact, OracleReport, OracleState};
+pub use report::{CrossCheck, OracleContact, OracleReport, OracleState, RegionMember};

@@ -40,9 +40,18 @@ pub(crate) fn solve(m: &[[f64; N]; N], b: &[f64; N], n: usize) -> Option<[f64; N
     x[..n].iter().all(|v| v.is_finite()).then_some(x)
 }
 
-/// Smallest eigenvalue of the symmetric leading `n x n` block (cyclic Jacobi rotations, which
-/// converge quadratically; 50 sweeps is far more than a 4 x 4 ever needs).
+/// Smallest eigenvalue of the symmetric leading `n x n` block (see [`eigenvalues`]).
 pub(crate) fn min_eigenvalue(m: &[[f64; N]; N], n: usize) -> f64 {
+    eigenvalues(m, n)[..n]
+        .iter()
+        .copied()
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The eigenvalues of the symmetric leading `n x n` block, in no particular order (the first
+/// `n` entries; cyclic Jacobi rotations, which converge quadratically; 50 sweeps is far more
+/// than a 4 x 4 ever needs).
+pub(crate) fn eigenvalues(m: &[[f64; N]; N], n: usize) -> [f64; N] {
     let mut a = *m;
     for _ in 0..50 {
         let off: f64 = (0..n)
@@ -77,7 +86,7 @@ pub(crate) fn min_eigenvalue(m: &[[f64; N]; N], n: usize) -> f64 {
             }
         }
     }
-    (0..n).map(|i| a[i][i]).fold(f64::INFINITY, f64::min)
+    std::array::from_fn(|i| if i < n { a[i][i] } else { 0.0 })
 }
 
 #[cfg(test)]

@@ -11,7 +11,8 @@ use crate::options::OracleOptions;
 use crate::penetration;
 use crate::polish::{self, Limits, Pair, Polished};
 use crate::posed::PosedSolid;
-use crate::report::{OracleContact, OracleReport};
+use crate::regions;
+use crate::report::{OracleContact, OracleReport, RegionMember};
 use crate::sampling::{self, Sample};
 use geom_param::{DPose3, FeatureLocation, Solid};
 
@@ -19,6 +20,9 @@ use geom_param::{DPose3, FeatureLocation, Solid};
 pub const SAMPLE_BUDGET: usize = 1_000_000;
 /// Extra sampled margin beyond `reach`, in spacings.
 const MARGIN: f64 = 3.0;
+/// The oracle's distance resolution, in stationarity tolerances: minima separated by a barrier
+/// lower than this are one region (`regions`).
+const RESOLUTION: f64 = 5.0;
 /// Most penetration starts taken from crossings, per side.
 const MAX_CROSSING_STARTS: usize = 64;
 
@@ -72,6 +76,7 @@ pub fn find_contacts(
         .map_or(f64::INFINITY, |c| c.distance);
     Ok(OracleReport {
         contacts: primary.contacts,
+        members: primary.members,
         min_distance,
         samples: primary.samples,
         cross_check,
@@ -91,6 +96,7 @@ fn checked_pose(pose: &DPose3, which: &'static str) -> Result<DPose3, OracleErro
 
 struct Run {
     contacts: Vec<OracleContact>,
+    members: Vec<RegionMember>,
     samples: usize,
     size: f64,
 }
@@ -118,6 +124,7 @@ fn run(
     if sa.is_empty() || sb.is_empty() {
         return Ok(Run {
             contacts,
+            members: Vec::new(),
             samples,
             size,
         });
@@ -148,21 +155,12 @@ fn run(
         let outcome = local_minima::polish(a, b, start, spacing, &limits);
         match outcome {
             Outcome::Minimum(p) => {
-                // The sign from A's outward side at the feature the point is on: a point held
-                // on a face's side (an edge of a face without trim) has the edge's side, which
-                // the face's own normal there does not give.
-                let snap = 10.0 * options.tolerance;
-                let held = match a.location(p.pair.fa, p.pair.a, p.pair.held_a, snap) {
-                    FeatureLocation::Face { .. } => Held::Face,
-                    FeatureLocation::Edge { id, t } => Held::Edge {
-                        edge: id,
-                        t,
-                        use_index: 0,
-                    },
-                    FeatureLocation::Vertex { id } => Held::Vertex(id),
+                let signed = |p: &Polished| {
+                    let negative = is_negative(a, p, options.tolerance);
+                    p.eval.r.length() * if negative { -1.0 } else { 1.0 }
                 };
-                let na = a.sign_normal(p.pair.fa, p.pair.a, held);
-                let negative = na.is_some_and(|n| (p.eval.pb.point - p.eval.pa.point).dot(n) < 0.0);
+                let p = local_minima::deeper_corner(a, b, *p, &limits, signed);
+                let negative = is_negative(a, &p, options.tolerance);
                 if through_material(&p.eval, &ta, &tb, options.tolerance) {
                     continue;
                 }
@@ -233,11 +231,32 @@ fn run(
     }
     contacts.retain(|c| c.distance <= options.reach);
     contacts.sort_by(|p, q| p.distance.total_cmp(&q.distance));
+    let (contacts, members) =
+        regions::group(a, b, contacts, &limits, RESOLUTION * options.tolerance);
     Ok(Run {
         contacts,
+        members,
         samples,
         size,
     })
+}
+
+/// Whether a polished minimum is a penetration: B's point behind A's outward side at the
+/// feature A's point is on (a point held on a face's side, an edge of a face without trim, has
+/// the edge's side, which the face's own normal there does not give).
+fn is_negative(a: &PosedSolid, p: &Polished, tolerance: f64) -> bool {
+    let snap = 10.0 * tolerance;
+    let held = match a.location(p.pair.fa, p.pair.a, p.pair.held_a, snap) {
+        FeatureLocation::Face { .. } => Held::Face,
+        FeatureLocation::Edge { id, t } => Held::Edge {
+            edge: id,
+            t,
+            use_index: 0,
+        },
+        FeatureLocation::Vertex { id } => Held::Vertex(id),
+    };
+    let na = a.sign_normal(p.pair.fa, p.pair.a, held);
+    na.is_some_and(|n| (p.eval.pb.point - p.eval.pa.point).dot(n) < 0.0)
 }
 
 fn points(samples: &[Sample]) -> Vec<glam::DVec3> {
@@ -262,5 +281,5 @@ fn to_contact(
     tolerance: f64,
 ) -> OracleContact {
     let snap = 10.0 * tolerance;
-    contact(a, b, p, negative, snap)
+    contact(a, b, p, negative, snap, tolerance)
 }

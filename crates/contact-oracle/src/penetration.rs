@@ -70,6 +70,18 @@ fn phi(a: &PosedSolid, b: &PosedSolid, pair: Pair, limits: &Limits) -> Option<Ph
     })
 }
 
+/// The signed distance φ of A's point of `pair` (held where `pair` holds it) to B, and the pair
+/// with B's foot, projected from B's parameters in `pair`; `None` when the projection does not
+/// converge.
+pub(crate) fn signed_distance(
+    a: &PosedSolid,
+    b: &PosedSolid,
+    pair: Pair,
+    limits: &Limits,
+) -> Option<(f64, Pair)> {
+    phi(a, b, pair, limits).map(|p| (p.value, p.pair))
+}
+
 /// Signed distance of the samples of `own` (A) to B that are inside B or near its surface
 /// (`None` for the others). `near` holds each sample's nearest sample of `other` within the
 /// sampled reach; samples less than a spacing in front of it are projected, and the inside

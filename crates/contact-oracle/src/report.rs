@@ -34,6 +34,24 @@ pub struct OracleContact {
     pub residual: f64,
     /// Newton iterations spent in the final polish.
     pub iterations: u32,
+    /// The oracle's own bound on the error of `point_a` and `point_b` (mm), from the
+    /// conditioning of its polished pair: the residual over the smallest eigenvalue of the
+    /// Hessian of ½|S_a − S_b|² in arc-length variables, or near touch, where that eigenvalue
+    /// vanishes, (2 residual / κ²)^⅓ with κ the gap's smallest curvature (1/mm), whichever is
+    /// smaller, plus the coordinates' rounding. Infinite for a continuous contact (the gap flat
+    /// along some direction: any point of the set is an answer).
+    pub point_error_estimate: f64,
+}
+
+/// A point the oracle's polish accepted that is no separate minimum: a path joins it to a
+/// lower point of the same region (its report entry) along which the distance never rises
+/// above it by more than the oracle's resolution (see [`OracleReport::members`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RegionMember {
+    /// Index in [`OracleReport::contacts`] of the region's lowest point.
+    pub region: usize,
+    /// The point, as it was polished.
+    pub contact: OracleContact,
 }
 
 /// How the pair stands against a contact band [delta1, delta2].
@@ -61,8 +79,15 @@ pub struct CrossCheck {
 /// Everything the oracle found between two posed solids.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OracleReport {
-    /// All local minima and penetration witnesses with distance <= reach, sorted by distance.
+    /// All local minima and penetration witnesses with distance <= reach, sorted by distance:
+    /// one per region of near-minimal distance (its lowest point), where a region holds the
+    /// points joined by a path along which the distance rises by no more than the oracle's
+    /// resolution (5 x its stationarity tolerance) above the higher end.
     pub contacts: Vec<OracleContact>,
+    /// The other points of those regions that the polish accepted (stationary to its
+    /// tolerance but no separate minimum: points on the slope next to a touch or a shallow
+    /// crossing, or anywhere on a continuous contact), each naming its region.
+    pub members: Vec<RegionMember>,
     /// Smallest signed distance among `contacts`; +inf when there is none.
     pub min_distance: f64,
     /// Samples used on both surfaces in the primary run.
@@ -83,6 +108,16 @@ impl OracleReport {
         } else {
             OracleState::Separated
         }
+    }
+
+    /// Contact `index` and the members of its region.
+    pub fn region(&self, index: usize) -> impl Iterator<Item = &OracleContact> {
+        self.contacts.get(index).into_iter().chain(
+            self.members
+                .iter()
+                .filter(move |m| m.region == index)
+                .map(|m| &m.contact),
+        )
     }
 
     /// The contacts with delta1 <= distance <= delta2.

@@ -4,7 +4,7 @@
 //! curve), not by the oracle.
 
 use contact_oracle::{OracleOptions, OracleReport, find_contacts};
-use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectDescription, Solid};
+use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectFile, Solid};
 
 fn solid(name: &str) -> Solid {
     let path = format!(
@@ -12,7 +12,7 @@ fn solid(name: &str) -> Solid {
         env!("CARGO_MANIFEST_DIR")
     );
     let text = std::fs::read_to_string(&path).expect("fixture file");
-    ObjectDescription::from_json(&text)
+    ObjectFile::from_json(&text)
         .expect("object JSON")
         .build(&MeshOptions::default())
         .expect("object builds")
@@ -183,4 +183,95 @@ fn an_apex_inside_a_surface_is_witnessed_at_the_apex() {
         report.contacts.iter().all(|c| c.distance.abs() > 1e-6),
         "{report:?}"
     );
+}
+
+/// vase-paperweight 9674568083999433558 of `soak 10000 --seed 4002`, built as a touch at
+/// 3.3e-10 mm: the vase's bottom rim (edge 0, the circle r = 26 at z = 0) touches the
+/// paperweight's flat bottom (face 0, the plane z = 0 of B, material above it). The oracle
+/// listed six minima along the rim, the touch and five more at 1.2e-7 to 6.0e-7 mm up to
+/// 6e-3 mm from it, which the soak counted as missed. Closed form: with n B's outward normal
+/// (−z of B) and p0 B's origin, a rim point at angle θ is (q(θ) − p0) · n from the plane,
+/// = −p0 · n + 26 (n_x cos θ + n_y sin θ): a single minimum on the circle, at
+/// θ* = atan2(−n_y, −n_x), rising as 26 |n_xy| (1 − cos(θ − θ*)) on both sides. So the five are
+/// no minima: the polish accepted them because its residual (the tangential part of a
+/// connecting vector 1e-7 mm long) is below its absolute tolerance whatever the slope. Now
+/// they are members of the touch's region (the distance rises monotonically from the touch
+/// to each of them along the rim) and the report has one contact.
+#[test]
+fn a_rim_touching_a_plane_is_one_minimum() {
+    let pose_b = pose(
+        [39.23675798667718, 10.268181967326449, 10.60503555006201],
+        [
+            -0.8272766063050112,
+            0.3787005894505797,
+            -0.409280350089375,
+            0.06847536229159813,
+        ],
+    );
+    let n = pose_b.rotation * -DVec3::Z;
+    let p0 = pose_b.translation;
+    let rim = |theta: f64| DVec3::new(26.0 * theta.cos(), 26.0 * theta.sin(), 0.0);
+    let plane = |q: DVec3| (q - p0).dot(n);
+    let touch_angle = (-n.y).atan2(-n.x);
+    let touch = rim(touch_angle);
+    let lowest = plane(touch);
+    // The foot of the touch lies on B's bottom disk (radius 32).
+    let foot = pose_b.rotation.inverse() * (touch - lowest * n - p0);
+    assert!(
+        foot.z.abs() < 1e-9 && foot.truncate().length() < 32.0,
+        "{foot:?}"
+    );
+    let report = oracle("vase", "paperweight", &pose_b);
+    assert_eq!(report.contacts.len(), 1, "{report:?}");
+    let c = &report.contacts[0];
+    assert!((c.distance - lowest).abs() < 1e-12, "{c:?} {lowest:e}");
+    assert!(
+        c.point_a.distance(touch) <= c.point_error_estimate,
+        "{c:?} {touch:?}"
+    );
+    assert!(report.members.len() >= 5, "{report:?}");
+    for m in &report.members {
+        let p = m.contact.point_a;
+        assert!(
+            p.z.abs() < 1e-12 && (p.truncate().length() - 26.0).abs() < 1e-9,
+            "{p:?}"
+        );
+        let rise = plane(p) - lowest;
+        assert!((m.contact.distance - plane(p)).abs() < 1e-12, "{m:?}");
+        assert!(rise > 1e-8, "{m:?}: a member is no minimum, rise {rise:e}");
+    }
+}
+
+/// bracket-paperweight 4792506523713132914 of `soak 300 --general --seed 2026`, built as a
+/// touch at −9.3e-10 mm: the bracket's corner at its origin (vertex 0) pokes a hair into the
+/// paperweight's flat bottom (face 0, the plane z = 0 of B, material above it). The oracle
+/// reported +1.3e-10 mm on the bracket's edge 0, 1.6e-9 mm from the corner: a point of the
+/// curve where the corner's edges cross the plane (f = ½|r|² vanishes there and the cone test
+/// calls it a touch). Closed form: the corner is (p0 − 0) · n below the plane, n = B's outward
+/// normal −z_B, p0 = B's origin; that is the witness, and the oracle now reports it.
+#[test]
+fn a_corner_a_hair_inside_a_plane_is_witnessed_at_the_corner() {
+    let pose_b = pose(
+        [-6.20324367429038, 1.0766358227045587, 7.716520569669497],
+        [
+            0.5704223424291541,
+            0.6602469039450488,
+            -0.4653729731888312,
+            -0.14872919321371214,
+        ],
+    );
+    let n = pose_b.rotation * -DVec3::Z;
+    let depth = (DVec3::ZERO - pose_b.translation).dot(n);
+    // The corner's foot lies on B's bottom disk (radius 32).
+    let foot = pose_b.rotation.inverse() * (-depth * n - pose_b.translation);
+    assert!(foot.truncate().length() < 32.0, "{foot:?}");
+    assert!(depth < -9e-10 && depth > -1.1e-9, "{depth:e}");
+    let report = oracle("bracket", "paperweight", &pose_b);
+    let c = report
+        .contacts
+        .iter()
+        .min_by(|x, y| x.distance.total_cmp(&y.distance))
+        .unwrap_or_else(|| panic!("{report:?}"));
+    assert!((c.distance - depth).abs() < 1e-13, "{c:?} {depth:e}");
+    assert!(c.point_a.length() < 1e-12, "{c:?}");
 }

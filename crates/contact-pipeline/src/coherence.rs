@@ -428,7 +428,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             if refined.distance <= options.delta2 {
                 let tolerance = merge_tolerance(refined, scale);
                 // Distinct points (checked above): never merged.
-                insert_or_merge(&mut report.contacts, to_world(refined, pose_a), tolerance);
+                insert_or_merge(
+                    &mut report.contacts,
+                    to_world(refined, pose_a),
+                    tolerance,
+                    (&a.model.solid, &b.model.solid),
+                );
                 let id = *t.id.get_or_insert_with(|| {
                     cache.next_id += 1;
                     ContactId(cache.next_id)

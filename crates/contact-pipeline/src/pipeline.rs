@@ -421,7 +421,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             }
             if check == WitnessCheck::MutuallyNearest
                 && refined.diagnostics.is_local_minimum
-                && insert_or_merge(&mut report.contacts, to_world(refined, pose_a), tolerance)
+                && insert_or_merge(
+                    &mut report.contacts,
+                    to_world(refined, pose_a),
+                    tolerance,
+                    (&a.model.solid, &b.model.solid),
+                )
             {
                 report.stats.merged += 1;
             }
@@ -431,7 +436,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             return false;
         }
         let tolerance = merge_tolerance(refined, scale);
-        if insert_or_merge(&mut report.contacts, to_world(refined, pose_a), tolerance) {
+        if insert_or_merge(
+            &mut report.contacts,
+            to_world(refined, pose_a),
+            tolerance,
+            (&a.model.solid, &b.model.solid),
+        ) {
             report.stats.merged += 1;
         }
         state_only

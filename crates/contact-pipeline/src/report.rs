@@ -1,6 +1,6 @@
 //! What a query returns: the pair's state, its contacts and per-stage statistics.
 
-use exact_refine::RefineDiagnostics;
+use exact_refine::{RefineDiagnostics, RefineStatus};
 use geom_param::FeatureLocation;
 use glam::DVec3;
 
@@ -20,6 +20,18 @@ pub enum PairState {
 
 /// One contact: a local minimum of the distance between the two surfaces inside the band, or
 /// (`distance < delta1`) one penetration region's depth.
+///
+/// Each contact is one representative pair of its region of near-minimal distance. Around an
+/// isolated minimum the gap rises as `distance + ½ κ s²` (κ =
+/// `diagnostics.gap_curvature`, s the slide in mm): [`Contact::flat_extent`] is how far that
+/// region reaches at a given tolerance, and the points themselves are good to
+/// `diagnostics.point_error_estimate`. A *continuous contact* (the paper's section IV: flat
+/// face on flat face, parallel cylinders, concentric spheres), where the gap is constant along
+/// some direction to rounding, has no isolated minimum: it is flagged
+/// ([`Contact::is_continuous`], status `RefineStatus::ContinuousContact`, κ = 0, infinite point
+/// error estimate), its distance is exact, its points are one pair of the set, and the pipeline
+/// reports one contact per connected region found (seeds refined into the same region, on the
+/// same pair of features at the same distance with the same normal, are merged).
 ///
 /// A penetration contact is the region's exact penetration witness: the deepest pair of
 /// mutually nearest boundary points with opposed normals (a local minimum of the signed
@@ -50,6 +62,34 @@ pub struct Contact {
     pub location_b: FeatureLocation,
     /// The refiner's account of how the point was found (iterations, residual, conditioning).
     pub diagnostics: RefineDiagnostics,
+}
+
+impl Contact {
+    /// Whether this is one representative pair of a continuous contact: the gap is constant
+    /// to rounding along some direction (status `RefineStatus::ContinuousContact`), so the
+    /// distance is exact and the points are any pair of the degenerate set.
+    #[must_use]
+    pub fn is_continuous(&self) -> bool {
+        self.diagnostics.status == RefineStatus::ContinuousContact
+    }
+
+    /// Half-length (mm) of the region around the reported pair over which the gap stays within
+    /// `tolerance` (mm) of `distance`, along the gap's flattest direction, to second order:
+    /// √(2 tolerance / κ) with κ = `diagnostics.gap_curvature` (1/mm). Infinite for a
+    /// continuous contact (κ = 0: the region ends where its features do, which is not
+    /// measured); 0 when `tolerance` is not a non-negative number or κ is infinite (a vertex
+    /// against a vertex).
+    #[must_use]
+    pub fn flat_extent(&self, tolerance: f64) -> f64 {
+        let kappa = self.diagnostics.gap_curvature;
+        if tolerance.is_nan() || tolerance < 0.0 || kappa.is_nan() {
+            return 0.0;
+        }
+        if kappa <= 0.0 {
+            return f64::INFINITY;
+        }
+        (2.0 * tolerance / kappa).sqrt()
+    }
 }
 
 /// Which stages ran for a query, their wall times and their counts.

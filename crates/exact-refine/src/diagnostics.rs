@@ -106,6 +106,11 @@ pub(crate) fn diagnose(
         is_local_minimum,
         error_estimate,
         point_error_estimate,
+        gap_curvature: if degenerate {
+            0.0
+        } else {
+            gap_curvature(state, normal)
+        },
         status,
     }
 }
@@ -173,4 +178,119 @@ fn relative_curvature(state: &State, normal: DVec3) -> (f64, bool) {
         .fold(f64::INFINITY, |m, l| m.min(l.abs()));
     let rounding = 256.0 * EPS * (1.0 + ell * curvature);
     (smallest / ell, smallest <= rounding)
+}
+
+/// The gap function's smallest curvature (1/mm, [`RefineDiagnostics::gap_curvature`]): the
+/// smallest eigenvalue of the scaled Hessian at separation ℓ (as in [`relative_curvature`])
+/// measured against the squared length the pair slides, divided by ℓ. A parameter step v (arc
+/// lengths) moves A's point by J_a v_a and B's by J_b v_b; rolling both points by the same
+/// unit tangent t has vᵀ G v = 2 (G = blockdiag(J_aᵀJ_a, J_bᵀJ_b), the first fundamental forms
+/// in arc-length variables), so the metric is G / 2 when both sides have parameters and G when
+/// one side is a vertex (then only the other point slides). The generalised eigenproblem
+/// H v = λ (G / w) v is solved as the ordinary one of L⁻¹ H L⁻ᵀ with G / w = L Lᵀ (Cholesky);
+/// where G is singular (a parameter whose direction vanishes, at a pole) the smallest
+/// eigenvalue of H itself stands in (the rolling direction's norm is then 2, not 1, on
+/// orthonormal parameters: an estimate within a factor 2).
+fn gap_curvature(state: &State, normal: DVec3) -> f64 {
+    let (n, na) = (state.n, state.na);
+    if n == 0 {
+        return f64::INFINITY;
+    }
+    let curvature = state.curvature.max(1.0 / state.scale);
+    let ell = state.d.length().max(EPS.sqrt() / curvature);
+    let d = -normal * ell;
+    let mut first = [DVec3::ZERO; 4];
+    first[..na].copy_from_slice(&state.ea.d[..na]);
+    first[na..n].copy_from_slice(&state.eb.d[..n - na]);
+    let weight = if na > 0 && na < n { 0.5 } else { 1.0 };
+    let mut h = [[0.0; 4]; 4];
+    let mut g = [[0.0; 4]; 4];
+    for i in 0..n {
+        for j in 0..n {
+            let same = (i < na) == (j < na);
+            let sign = if same { 1.0 } else { -1.0 };
+            let second = match (i < na, j < na) {
+                (true, true) => d.dot(state.ea.dd[i][j]),
+                (false, false) => -d.dot(state.eb.dd[i - na][j - na]),
+                _ => 0.0,
+            };
+            let scale = state.speed[i] * state.speed[j];
+            h[i][j] = (sign * first[i].dot(first[j]) + second) / scale;
+            if same {
+                g[i][j] = weight * first[i].dot(first[j]) / scale;
+            }
+        }
+    }
+    let smallest = |m: &[[f64; 4]; 4]| {
+        sym_eigen(m, n).values[..n]
+            .iter()
+            .fold(f64::INFINITY, |s, l| s.min(l.abs()))
+    };
+    match cholesky(&g, n) {
+        Some(l) => smallest(&congruence(&h, &l, n)) / ell,
+        None => 2.0 * weight * smallest(&h) / ell,
+    }
+}
+
+/// The lower-triangular L with L Lᵀ = m (leading n x n block), `None` when m is not positive
+/// definite to 1e-12 of its diagonal.
+fn cholesky(m: &[[f64; 4]; 4], n: usize) -> Option<[[f64; 4]; 4]> {
+    let mut l = [[0.0; 4]; 4];
+    for i in 0..n {
+        for j in 0..=i {
+            let mut s = m[i][j];
+            for k in 0..j {
+                s -= l[i][k] * l[j][k];
+            }
+            if i == j {
+                // Also refuses NaN: the comparison is false for it.
+                if s.partial_cmp(&(1e-12 * m[i][i].abs())) != Some(std::cmp::Ordering::Greater) {
+                    return None;
+                }
+                l[i][i] = s.sqrt();
+            } else {
+                l[i][j] = s / l[j][j];
+            }
+        }
+    }
+    Some(l)
+}
+
+/// L⁻¹ h L⁻ᵀ for lower-triangular L (leading n x n block), by forward substitution on the
+/// columns and then on the rows.
+fn congruence(h: &[[f64; 4]; 4], l: &[[f64; 4]; 4], n: usize) -> [[f64; 4]; 4] {
+    // x = L⁻¹ h: solve L x = h column by column.
+    let solve = |b: [f64; 4]| {
+        let mut x = [0.0; 4];
+        for i in 0..n {
+            let mut s = b[i];
+            for k in 0..i {
+                s -= l[i][k] * x[k];
+            }
+            x[i] = s / l[i][i];
+        }
+        x
+    };
+    let mut x = [[0.0; 4]; 4];
+    for j in 0..n {
+        let col = solve(std::array::from_fn(|i| h[i][j]));
+        for i in 0..n {
+            x[i][j] = col[i];
+        }
+    }
+    // y = L⁻¹ xᵀ = L⁻¹ (L⁻¹ h)ᵀ = L⁻¹ hᵀ L⁻ᵀ... then yᵀ = L⁻¹ h L⁻ᵀ (h symmetric).
+    let mut y = [[0.0; 4]; 4];
+    for j in 0..n {
+        let col = solve(std::array::from_fn(|i| x[j][i]));
+        for i in 0..n {
+            y[i][j] = col[i];
+        }
+    }
+    let mut out = [[0.0; 4]; 4];
+    for i in 0..n {
+        for j in 0..n {
+            out[i][j] = 0.5 * (y[i][j] + y[j][i]);
+        }
+    }
+    out
 }

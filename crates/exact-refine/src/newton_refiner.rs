@@ -270,6 +270,7 @@ fn invalid(seed: &Seed) -> RefinedContact {
             is_local_minimum: false,
             error_estimate: f64::INFINITY,
             point_error_estimate: f64::INFINITY,
+            gap_curvature: f64::INFINITY,
             status: RefineStatus::InvalidInput,
         },
     }

@@ -127,6 +127,17 @@ pub struct RefineDiagnostics {
     /// ε x scale / (1e-9 x curvature) while the distance stays good to rounding.
     /// `f64::INFINITY` for a continuous contact (any point of the degenerate set is an answer).
     pub point_error_estimate: f64,
+    /// The gap function's smallest curvature (1/mm): to second order the distance between the
+    /// features rises as `distance + ½ gap_curvature s²` when the pair slides by s (mm) along
+    /// its flattest relative direction, and at least that fast along any other (the smallest
+    /// eigenvalue of the Hessian of ½|P_a − P_b|² in arc-length variables at separation
+    /// ℓ = max(|gap|, √ε / curvature scale), divided by ℓ; for two faces, the smallest
+    /// eigenvalue of the sum of their curvature tensors in the common tangent plane, e.g.
+    /// 1/R₁ + 1/R₂ for two spheres). 0 for a continuous contact (zero to rounding, see
+    /// [`RefineStatus::ContinuousContact`]); `f64::INFINITY` where no parameter can slide (a
+    /// vertex against a vertex) or the input was invalid. So √(2τ / gap_curvature) is the
+    /// half-length (mm) of the region over which the gap stays within τ of `distance`.
+    pub gap_curvature: f64,
     /// How it ended.
     pub status: RefineStatus,
 }

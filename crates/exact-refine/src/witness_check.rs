@@ -274,6 +274,7 @@ mod tests {
                 is_local_minimum: true,
                 error_estimate: 0.0,
                 point_error_estimate: 0.0,
+                gap_curvature: f64::INFINITY,
                 status: RefineStatus::Converged,
             },
         }

@@ -54,6 +54,19 @@ fn sphere_sphere_separated_and_penetrating() {
                 d.error_estimate, d.point_error_estimate, d.iterations
             );
         }
+        // The gap's curvature: a point of A at arc s from the contact is |a − c_b| − rb from B,
+        // with |a − c_b|² = ra² + D² − 2 ra D cos(s / ra), D = ra + rb + gap, so
+        // κ = D / (ra (D − ra)) (1/ra + 1/rb at touch); measured with both points sliding it
+        // differs by O(gap x curvature) relative.
+        if gap.abs() <= 1e-3 {
+            let centres = ra + rb + gap;
+            let kappa = centres / (ra * (centres - ra));
+            assert!(
+                (c.diagnostics.gap_curvature - kappa).abs() <= 1e-3 * kappa,
+                "{what}: gap curvature {:e} vs {kappa:e}",
+                c.diagnostics.gap_curvature
+            );
+        }
         // The normal turns with the points: by point error x curvature (1 / 10 mm).
         let tol = 1e-12 + c.diagnostics.point_error_estimate / ra;
         assert!(
@@ -125,6 +138,18 @@ fn crossed_cylinders_side_to_side() {
         let what = format!("case {k}, gap {gap}, angle {angle}");
         assert_converged(&c, &what);
         assert_answer(&c, gap, foot_a + normal * r1, foot_b - normal * r2, &what);
+        // The gap's curvature: the smallest eigenvalue of the sum of the two rank-one curvature
+        // tensors 1/r1 and 1/r2 across their axes, which cross at `angle`.
+        if gap.abs() <= 1e-4 {
+            let (k1, k2) = (1.0 / r1, 1.0 / r2);
+            let s = k1 + k2;
+            let kappa = 0.5 * (s - (s * s - 4.0 * k1 * k2 * angle.sin().powi(2)).sqrt());
+            assert!(
+                (c.diagnostics.gap_curvature - kappa).abs() <= 1e-3 * kappa,
+                "{what}: gap curvature {:e} vs {kappa:e}",
+                c.diagnostics.gap_curvature
+            );
+        }
     }
 }
 

@@ -50,6 +50,18 @@ fn conformal_sphere_in_socket() {
     );
     assert_converged_at(&c, 20.0, "resting");
     assert_answer(&c, 5e-6, pa, pb, "resting");
+    // The gap's curvature: a socket point at arc s from the contact is |a − c| − r from the
+    // ball (centre c, e = R − r − gap from the socket's centre), and |a − c| ≈ (r + gap) +
+    // e s² / (2R (r + gap)), so κ = e / (R (r + gap)) = 5e-8 per mm (1/r − 1/R = 1e-7 at
+    // touch), resolved to the rounding of the Hessian's eigenvalue over the gap
+    // (256 ε / 5e-6 mm ≈ 1.1e-8 per mm).
+    let big = r * (1.0 + 1e-6);
+    let kappa = (big - r - 5e-6) / (big * (r + 5e-6));
+    assert!(
+        (c.diagnostics.gap_curvature - kappa).abs() <= 256.0 * f64::EPSILON / 5e-6,
+        "{:e} vs {kappa:e}",
+        c.diagnostics.gap_curvature
+    );
     // Concentric: every radial pair is closest.
     let (c, _, _) = sphere_in_socket(r, r * (1.0 + 1e-6), r * 1e-6, w);
     report("sphere r=10 concentric in socket r(1+1e-6)", &c, r * 1e-6);
@@ -59,6 +71,7 @@ fn conformal_sphere_in_socket() {
         RefineStatus::ContinuousContact,
         "{c:?}"
     );
+    assert_eq!(c.diagnostics.gap_curvature, 0.0, "{c:?}");
     assert!(
         (c.distance - r * 1e-6).abs() <= c.diagnostics.error_estimate,
         "{c:?}"
@@ -72,6 +85,7 @@ fn conformal_sphere_in_socket() {
         RefineStatus::ContinuousContact,
         "{c:?}"
     );
+    assert_eq!(c.diagnostics.gap_curvature, 0.0, "{c:?}");
     assert!(c.distance.abs() <= c.diagnostics.error_estimate, "{c:?}");
 }
 
@@ -92,6 +106,7 @@ fn parallel_cylinders_and_flat_on_flat() {
         RefineStatus::ContinuousContact,
         "{c:?}"
     );
+    assert_eq!(c.diagnostics.gap_curvature, 0.0, "{c:?}");
     assert!(
         (c.distance - gap).abs() <= c.diagnostics.error_estimate,
         "{c:?}"
@@ -112,6 +127,7 @@ fn parallel_cylinders_and_flat_on_flat() {
         RefineStatus::ContinuousContact,
         "{c:?}"
     );
+    assert_eq!(c.diagnostics.gap_curvature, 0.0, "{c:?}");
     assert!(
         (c.distance - gap).abs() <= c.diagnostics.error_estimate,
         "{c:?}"
@@ -162,6 +178,12 @@ fn contact_at_pole_apex_edge_and_vertex() {
         "{c:?}"
     );
     assert_answer(&c, gap, DVec3::new(1.0, 2.0, 2.0), apex, "apex");
+    // Only the disk's point slides: its distance to the apex is √(gap² + s²), curvature 1/gap.
+    assert!(
+        (c.diagnostics.gap_curvature * gap - 1.0).abs() < 1e-6,
+        "{:e}",
+        c.diagnostics.gap_curvature
+    );
 
     // Exactly on an edge circle: a sphere in the rim's normal cone, seeds on the faces.
     let (a, b) = (cylinder(5.0, 2.0), sphere(1.0));

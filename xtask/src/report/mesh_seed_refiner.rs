@@ -48,6 +48,7 @@ impl Refiner for MeshSeedRefiner {
                 is_local_minimum: true,
                 error_estimate: 0.0,
                 point_error_estimate: 0.0,
+                gap_curvature: f64::INFINITY,
                 status: RefineStatus::Converged,
             },
         }

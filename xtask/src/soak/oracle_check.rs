@@ -13,9 +13,13 @@
 //!   region's depth) must match an oracle penetration witness, and the oracle's deepest
 //!   witness (on faces) must match one of them when the pipeline reports any
 //!   ([`compare_depths`]).
-//! - A match: distances within [`DISTANCE_TOLERANCE`] and both points within
-//!   [`POINT_TOLERANCE`] x size plus the pipeline's own `point_error_estimate` (for a
-//!   continuous contact, where that estimate is infinite, the distance alone).
+//! - A match: distances within [`DISTANCE_TOLERANCE`] and both points within the sum of the
+//!   two answers' own point error bounds, each from its conditioning ([`point_tolerance`]:
+//!   the pipeline's `point_error_estimate` and the oracle's, plus rounding; for a continuous
+//!   contact, where a bound is infinite, the distance alone). An oracle contact is matched
+//!   when any point of its region is (its lowest point or a member the oracle joined to it:
+//!   points of one region of near-minimal distance, see `contact_oracle::OracleReport`), and a
+//!   pipeline contact is no false one when it matches any point the oracle accepted.
 //!
 //! - **oracle limits** (listed, not failures): the oracle documents that it reports no
 //!   penetration witness on an edge (it does report one at an apex, a pole of its face, but
@@ -39,14 +43,14 @@
 //! five times it, and the point tolerance is the pipeline's merge tolerance (two points this
 //! close are one contact).
 
-use contact_oracle::{OracleOptions, OracleReport, OracleState, find_contacts};
+use contact_oracle::{OracleContact, OracleOptions, OracleReport, OracleState, find_contacts};
 use contact_pipeline::{Contact, ContactOptions, PairReport, PairState};
 use geom_param::{DPose3, FeatureLocation, Solid};
 
 /// Distance tolerance of a match (mm).
 pub const DISTANCE_TOLERANCE: f64 = 1e-7;
-/// Point tolerance of a match, relative to the larger object's size.
-pub const POINT_TOLERANCE: f64 = 1e-6;
+/// Relative rounding of coordinates in a point comparison (64 ε).
+pub const ROUNDING: f64 = 64.0 * f64::EPSILON;
 /// Distances this close to delta1 or delta2 (mm) are borderline: either state is right.
 pub const AMBIGUITY: f64 = 1e-7;
 
@@ -99,25 +103,56 @@ pub fn oracle_report(
     find_contacts(a, &DPose3::IDENTITY, b, pose_b, &oracle_options).map_err(|e| e.to_string())
 }
 
-/// Whether pipeline contact `c` and the oracle's point pair are the same minimum; the
-/// distance and point differences when they are.
-fn matched(
-    c: &Contact,
-    point_a: geom_param::DVec3,
-    point_b: geom_param::DVec3,
-    distance: f64,
-    size: f64,
-) -> Option<(f64, f64)> {
-    let dd = (c.distance - distance).abs();
+/// The point tolerance of a match (mm): the two answers' own error bounds added, each from its
+/// conditioning (the pipeline's `point_error_estimate`, the oracle's from its own Hessian: see
+/// `docs/STABILITY.md`, "What the numbers mean"), plus the rounding of coordinates of this
+/// size ([`ROUNDING`] x (size + |point|)). Infinite when either bound is (a continuous contact:
+/// any point of the set is an answer).
+#[must_use]
+pub fn point_tolerance(c: &Contact, o: &OracleContact, size: f64) -> f64 {
+    let coordinates = size + c.point_a.length().max(c.point_b.length());
+    c.diagnostics.point_error_estimate + o.point_error_estimate + ROUNDING * coordinates
+}
+
+/// Whether pipeline contact `c` and the oracle's pair `o` are the same minimum; the distance
+/// and point differences when they are (the point difference 0 when either side's point
+/// error bound is infinite: then the distance decides).
+fn matched(c: &Contact, o: &OracleContact, size: f64) -> Option<(f64, f64)> {
+    let dd = (c.distance - o.distance).abs();
     if dd > DISTANCE_TOLERANCE {
         return None;
     }
-    let pe = c.diagnostics.point_error_estimate;
-    if !pe.is_finite() {
+    let tolerance = point_tolerance(c, o, size);
+    if !tolerance.is_finite() {
         return Some((dd, 0.0));
     }
-    let dp = c.point_a.distance(point_a).max(c.point_b.distance(point_b));
-    (dp <= POINT_TOLERANCE * size + pe).then_some((dd, dp))
+    let dp = c
+        .point_a
+        .distance(o.point_a)
+        .max(c.point_b.distance(o.point_b));
+    (dp <= tolerance).then_some((dd, dp))
+}
+
+/// The best match of pipeline contact `c` over the oracle's region `index` (its lowest point
+/// and the members the oracle joined to it): the smallest distance difference.
+fn matched_region(
+    c: &Contact,
+    oracle: &OracleReport,
+    index: usize,
+    size: f64,
+) -> Option<(f64, f64)> {
+    oracle
+        .region(index)
+        .filter_map(|o| matched(c, o, size))
+        .min_by(|x, y| x.0.total_cmp(&y.0))
+}
+
+/// Every point the oracle accepted: its contacts and their regions' members.
+fn all_points(oracle: &OracleReport) -> impl Iterator<Item = &OracleContact> {
+    oracle
+        .contacts
+        .iter()
+        .chain(oracle.members.iter().map(|m| &m.contact))
 }
 
 /// Compares the pipeline's `report` with the oracle's for the same pose, built with a critical
@@ -179,7 +214,11 @@ pub fn compare(
     if truth != OracleState::Contact || report.state != PairState::Contact {
         return out;
     }
-    for o in oracle.in_band(options.delta1, options.delta2) {
+    let in_band = |o: &OracleContact| o.distance >= options.delta1 && o.distance <= options.delta2;
+    for (index, o) in oracle.contacts.iter().enumerate() {
+        if !in_band(o) {
+            continue;
+        }
         if near_edge(o.distance, options) {
             out.borderline = true;
             continue;
@@ -187,7 +226,7 @@ pub fn compare(
         let best = report
             .contacts
             .iter()
-            .filter_map(|c| matched(c, o.point_a, o.point_b, o.distance, size))
+            .filter_map(|c| matched_region(c, oracle, index, size))
             .min_by(|x, y| x.0.total_cmp(&y.0));
         match best {
             Some((dd, dp)) => {
@@ -205,10 +244,7 @@ pub fn compare(
             out.borderline = true;
             continue;
         }
-        let found = oracle
-            .contacts
-            .iter()
-            .any(|o| matched(c, o.point_a, o.point_b, o.distance, size).is_some());
+        let found = all_points(oracle).any(|o| matched(c, o, size).is_some());
         if !found
             && c.distance < 0.0
             && (on_edge_or_vertex(&c.location_a) || on_edge_or_vertex(&c.location_b))
@@ -246,10 +282,10 @@ fn compare_depths(
         .iter()
         .filter(|c| c.distance < options.delta1)
         .collect();
-    let witnesses = || oracle.contacts.iter().filter(|o| o.distance < 0.0);
+    let witnesses = || all_points(oracle).filter(|o| o.distance < 0.0);
     for c in &deep {
         let best = witnesses()
-            .filter_map(|o| matched(c, o.point_a, o.point_b, o.distance, size))
+            .filter_map(|o| matched(c, o, size))
             .min_by(|x, y| x.0.total_cmp(&y.0));
         match best {
             Some((dd, _)) => out.worst_depth = out.worst_depth.max(dd),
@@ -286,16 +322,18 @@ fn compare_depths(
     if deep.is_empty() {
         return;
     }
-    let deepest = witnesses().min_by(|x, y| x.distance.total_cmp(&y.distance));
+    let deepest = oracle
+        .contacts
+        .iter()
+        .filter(|o| o.distance < 0.0)
+        .min_by(|x, y| x.distance.total_cmp(&y.distance));
     if let Some(o) = deepest.filter(|o| {
         !on_edge_or_vertex(&o.location_a)
             && !on_edge_or_vertex(&o.location_b)
             && o.distance < options.delta1
             && !near_edge(o.distance, options)
     }) {
-        let found = deep
-            .iter()
-            .any(|c| matched(c, o.point_a, o.point_b, o.distance, size).is_some());
+        let found = deep.iter().any(|c| matched(c, o, size).is_some());
         if !found {
             out.depth_mismatches.push(format!(
                 "oracle's deepest witness {:e} at {:?} / {:?} ({:?} {:?}) not among the \
@@ -319,6 +357,7 @@ mod tests {
     fn oracle_with_minimum(min_distance: f64) -> OracleReport {
         OracleReport {
             contacts: Vec::new(),
+            members: Vec::new(),
             min_distance,
             samples: 0,
             cross_check: CrossCheck {
@@ -381,6 +420,7 @@ mod tests {
             location_b: face,
             residual: 0.0,
             iterations: 1,
+            point_error_estimate: 1e-12,
         };
         let mut report = pipeline(PairState::Penetration);
         report.contacts.push(Contact {
@@ -398,6 +438,7 @@ mod tests {
                 is_local_minimum: true,
                 error_estimate: 1e-13,
                 point_error_estimate: 1e-12,
+                gap_curvature: 0.1,
                 status: RefineStatus::Converged,
             },
         });

@@ -73,7 +73,8 @@ impl Errors {
 
 /// Runs the oracle on `scene` with reach 1 mm and checks it reports exactly the expected
 /// contacts: same count, each expected contact matched by distance within `distance_tol` and
-/// both points within `point_tol`, clean cross-check. Returns the report and the errors.
+/// both points within `point_tol` and within the contact's own `point_error_estimate`, clean
+/// cross-check. Returns the report and the errors.
 pub fn check_scene(
     scene: &ClosedFormScene,
     distance_tol: f64,
@@ -156,6 +157,13 @@ pub fn check_solids(
             e.distance
         );
         assert!(err.point <= point_tol, "{what}: points {c:?} vs {e:?}");
+        // The oracle's own bound on its points (from its conditioning) covers the error.
+        assert!(
+            err.point <= c.point_error_estimate,
+            "{what}: point error {:e} above the bound {:e}: {c:?} vs {e:?}",
+            err.point,
+            c.point_error_estimate
+        );
         // Exact up to the stationarity residual (the tangential part of the connecting vector).
         assert!(
             (c.point_b - (c.point_a + c.normal * c.distance)).length()
