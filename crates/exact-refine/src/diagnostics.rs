@@ -7,7 +7,7 @@
 use crate::feature_eval::Body;
 use crate::newton::{EPS, Outcome, Solution, State, is_touch};
 use crate::refiner::{RefineDiagnostics, RefineStatus};
-use crate::sym_eigen::sym_eigen;
+use crate::sym_eigen::sym_eigenvalues;
 use geom_param::DVec3;
 
 /// Diagnostics of `solution` (a pair solve between `a` and `b`) whose unit normal from A to B
@@ -20,9 +20,9 @@ pub(crate) fn diagnose(
 ) -> RefineDiagnostics {
     let state = &solution.state;
     let n = state.n;
-    let eigen = sym_eigen(&state.hs, n);
-    let values = &eigen.values[..n];
-    let floor = state.eigen_floor(&eigen);
+    let spectrum = sym_eigenvalues(&state.hs, n);
+    let values = &spectrum[..n];
+    let floor = state.eigen_floor(&spectrum);
     let largest = values.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
     let smallest = values.iter().fold(f64::INFINITY, |m, l| m.min(l.abs()));
     let condition = match n {
@@ -167,8 +167,7 @@ fn relative_curvature(state: &State, normal: DVec3) -> (f64, bool) {
                 (si * sj * first[i].dot(first[j]) + second) / (state.speed[i] * state.speed[j]);
         }
     }
-    let eigen = sym_eigen(&h, n);
-    let smallest = eigen.values[..n]
+    let smallest = sym_eigenvalues(&h, n)[..n]
         .iter()
         .fold(f64::INFINITY, |m, l| m.min(l.abs()));
     let rounding = 256.0 * EPS * (1.0 + ell * curvature);

@@ -147,8 +147,8 @@ impl State {
     }
 
     /// Rounding floor of the scaled Hessian's eigenvalues: below it an eigenvalue is zero.
-    pub(crate) fn eigen_floor(&self, eigen: &SymEigen) -> f64 {
-        let largest = eigen.values[..self.n]
+    pub(crate) fn eigen_floor(&self, values: &[f64; 4]) -> f64 {
+        let largest = values[..self.n]
             .iter()
             .fold(0.0_f64, |m, l| m.max(l.abs()));
         64.0 * EPS * (largest + self.scale * self.curvature)
@@ -680,7 +680,7 @@ pub(crate) fn minimize(
                     return end(cur, iteration, Outcome::Converged);
                 }
                 let eigen = sym_eigen(&cur.hs, cur.n);
-                let floor = cur.eigen_floor(&eigen);
+                let floor = cur.eigen_floor(&eigen.values);
                 if eigen.values[0] >= -floor {
                     return end(cur, iteration, Outcome::Converged);
                 }
@@ -706,7 +706,7 @@ pub(crate) fn minimize(
                 if eigen.values[..n].iter().any(|l| !l.is_finite()) {
                     return end(cur, iteration, Outcome::Stalled);
                 }
-                let floor = cur.eigen_floor(&eigen).max(f64::MIN_POSITIVE);
+                let floor = cur.eigen_floor(&eigen.values).max(f64::MIN_POSITIVE);
                 descent_step(&cur, &eigen, floor)
             }
         };

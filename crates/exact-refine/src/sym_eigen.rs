@@ -17,32 +17,61 @@ pub(crate) struct SymEigen {
 /// `MAX_SWEEPS` sweeps; 4 x 4 matrices need about 4-6 sweeps, so the cap is never the limit on
 /// finite input. Non-finite input gives non-finite values, which the caller checks.
 pub(crate) fn sym_eigen(matrix: &[[f64; 4]; 4], n: usize) -> SymEigen {
+    match n {
+        0 => jacobi::<0, true>(matrix),
+        1 => jacobi::<1, true>(matrix),
+        2 => jacobi::<2, true>(matrix),
+        3 => jacobi::<3, true>(matrix),
+        _ => jacobi::<4, true>(matrix),
+    }
+}
+
+/// The eigenvalues of [`sym_eigen`] (ascending, entries from `n` on zero) without the
+/// eigenvectors: the same rotations, so bit for bit the same values, for callers that need
+/// only the spectrum (conditioning, the second-order test). The vectors' updates are about
+/// half the work of a rotation.
+pub(crate) fn sym_eigenvalues(matrix: &[[f64; 4]; 4], n: usize) -> [f64; 4] {
+    match n {
+        0 => jacobi::<0, false>(matrix),
+        1 => jacobi::<1, false>(matrix),
+        2 => jacobi::<2, false>(matrix),
+        3 => jacobi::<3, false>(matrix),
+        _ => jacobi::<4, false>(matrix),
+    }
+    .values
+}
+
+/// [`sym_eigen`] on the leading `N` x `N` block, accumulating the eigenvectors when `VECTORS`
+/// (otherwise `vectors` is zero). A constant size lets the compiler unroll the loops; the
+/// arithmetic, and its order, is the same for every `N`.
+fn jacobi<const N: usize, const VECTORS: bool>(matrix: &[[f64; 4]; 4]) -> SymEigen {
     const MAX_SWEEPS: usize = 32;
     let mut a = *matrix;
     let mut v = [[0.0; 4]; 4];
-    for (i, row) in v.iter_mut().enumerate().take(n) {
-        row[i] = 1.0;
+    if VECTORS {
+        for i in 0..N {
+            v[i][i] = 1.0;
+        }
     }
-    // Plain loops (no iterator adapters): this runs once or twice per Newton step. The
-    // rotations keep `a` exactly symmetric, so only the upper triangle is summed.
+    // The rotations keep `a` exactly symmetric, so only the upper triangle is summed.
     let mut norm2 = 0.0;
-    for i in 0..n {
-        for j in 0..n {
+    for i in 0..N {
+        for j in 0..N {
             norm2 += a[i][j] * a[i][j];
         }
     }
     for _ in 0..MAX_SWEEPS {
         let mut off = 0.0;
-        for i in 0..n {
-            for j in i + 1..n {
+        for i in 0..N {
+            for j in i + 1..N {
                 off += 2.0 * a[i][j] * a[i][j];
             }
         }
         if off.is_nan() || off <= 16.0 * f64::EPSILON * f64::EPSILON * norm2 {
             break;
         }
-        for p in 0..n {
-            for q in p + 1..n {
+        for p in 0..N {
+            for q in p + 1..N {
                 let apq = a[p][q];
                 if apq == 0.0 {
                     continue;
@@ -60,7 +89,7 @@ pub(crate) fn sym_eigen(matrix: &[[f64; 4]; 4], n: usize) -> SymEigen {
                 a[q][q] += t * apq;
                 a[p][q] = 0.0;
                 a[q][p] = 0.0;
-                for k in 0..n {
+                for k in 0..N {
                     if k != p && k != q {
                         let (x, y) = (a[k][p], a[k][q]);
                         a[k][p] = x - s * (y + tau * x);
@@ -69,23 +98,88 @@ pub(crate) fn sym_eigen(matrix: &[[f64; 4]; 4], n: usize) -> SymEigen {
                         a[q][k] = a[k][q];
                     }
                 }
-                for row in v.iter_mut().take(n) {
-                    let (x, y) = (row[p], row[q]);
-                    row[p] = x - s * (y + tau * x);
-                    row[q] = y + s * (x - tau * y);
+                if VECTORS {
+                    for row in v.iter_mut().take(N) {
+                        let (x, y) = (row[p], row[q]);
+                        row[p] = x - s * (y + tau * x);
+                        row[q] = y + s * (x - tau * y);
+                    }
                 }
             }
         }
     }
-    // Sort ascending (selection sort on at most 4 entries).
-    let mut out = SymEigen::default();
+    // Sort ascending (at most 4 entries; a stable insertion sort, so equal values keep their
+    // columns' order).
     let mut order = [0, 1, 2, 3];
-    order[..n].sort_by(|&i, &j| a[i][i].total_cmp(&a[j][j]));
-    for (col, &src) in order.iter().enumerate().take(n) {
+    for i in 1..N {
+        let mut j = i;
+        while j > 0 && a[order[j - 1]][order[j - 1]].total_cmp(&a[order[j]][order[j]]).is_gt() {
+            order.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    let mut out = SymEigen::default();
+    for (col, &src) in order.iter().enumerate().take(N) {
         out.values[col] = a[src][src];
-        for row in 0..n {
-            out.vectors[row][col] = v[row][src];
+        if VECTORS {
+            for row in 0..N {
+                out.vectors[row][col] = v[row][src];
+            }
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{sym_eigen, sym_eigenvalues};
+
+    /// A symmetric matrix with a planted spectrum: Q diag(λ) Qᵀ for a rotation Q (a product
+    /// of plane rotations), so the eigenvalues are known without this module.
+    fn planted(values: [f64; 4], n: usize) -> [[f64; 4]; 4] {
+        let mut q = [[0.0; 4]; 4];
+        for i in 0..n {
+            q[i][i] = 1.0;
+        }
+        for (p, r, angle) in [(0, 1, 0.7), (1, 2, -1.1), (0, 3, 0.4), (2, 3, 2.3), (0, 2, 0.9)] {
+            if r >= n {
+                continue;
+            }
+            let (s, c) = f64::sin_cos(angle);
+            for row in q.iter_mut().take(n) {
+                let (x, y) = (row[p], row[r]);
+                row[p] = c * x - s * y;
+                row[r] = s * x + c * y;
+            }
+        }
+        let mut m = [[0.0; 4]; 4];
+        for i in 0..n {
+            for j in 0..n {
+                m[i][j] = (0..n).map(|k| q[i][k] * values[k] * q[j][k]).sum();
+            }
+        }
+        m
+    }
+
+    /// Every size finds the planted spectrum (ascending, to rounding of the norm), the
+    /// vectors satisfy M v = λ v, and the values-only variant gives the same bits.
+    #[test]
+    fn planted_spectra_are_found_and_the_values_only_variant_agrees() {
+        let values = [-3.0, 1e-9, 2.5, 40.0];
+        for n in 0..=4 {
+            let mut sorted = values[..n].to_vec();
+            sorted.sort_by(f64::total_cmp);
+            let m = planted(values, n);
+            let eigen = sym_eigen(&m, n);
+            let only = sym_eigenvalues(&m, n);
+            for k in 0..n {
+                assert!((eigen.values[k] - sorted[k]).abs() <= 1e-13 * 40.0, "n {n} k {k}");
+                assert_eq!(eigen.values[k].to_bits(), only[k].to_bits(), "n {n} k {k}");
+                for i in 0..n {
+                    let mv: f64 = (0..n).map(|j| m[i][j] * eigen.vectors[j][k]).sum();
+                    assert!((mv - eigen.values[k] * eigen.vectors[i][k]).abs() <= 1e-12 * 40.0);
+                }
+            }
+        }
+    }
 }
