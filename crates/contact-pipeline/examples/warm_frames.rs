@@ -28,7 +28,9 @@ fn main() {
     let name = args
         .next()
         .unwrap_or_else(|| "pencil-bowl-two-contacts".to_owned());
-    let frames: usize = args.next().map_or(FRAMES, |n| n.parse().expect("frame count"));
+    let frames: usize = args
+        .next()
+        .map_or(FRAMES, |n| n.parse().expect("frame count"));
     let scene = fixture_scene::load_scene(&name);
     let start = scene
         .pipeline

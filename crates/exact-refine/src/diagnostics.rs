@@ -5,7 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::feature_eval::Body;
-use crate::newton::{EPS, Outcome, Solution, State, is_touch};
+use crate::newton::{EPS, Outcome, Solution, State, by_pair_kind, is_touch};
 use crate::refiner::{RefineDiagnostics, RefineStatus};
 use crate::sym_eigen::sym_eigenvalues;
 use geom_param::DVec3;
@@ -148,28 +148,39 @@ fn relative_curvature(state: &State, normal: DVec3) -> (f64, bool) {
     let curvature = state.curvature.max(1.0 / state.scale);
     let ell = state.d.length().max(EPS.sqrt() / curvature);
     let d = -normal * ell;
-    let mut first = [DVec3::ZERO; 4];
-    first[..na].copy_from_slice(&state.ea.d[..na]);
-    first[na..n].copy_from_slice(&state.eb.d[..n - na]);
-    let mut h = [[0.0; 4]; 4];
-    for i in 0..n {
-        for j in 0..n {
-            let (si, sj) = (
-                if i < na { 1.0 } else { -1.0 },
-                if j < na { 1.0 } else { -1.0 },
-            );
-            let second = match (i < na, j < na) {
-                (true, true) => d.dot(state.ea.dd[i][j]),
-                (false, false) => -d.dot(state.eb.dd[i - na][j - na]),
-                _ => 0.0,
-            };
-            h[i][j] =
-                (si * sj * first[i].dot(first[j]) + second) / (state.speed[i] * state.speed[j]);
-        }
-    }
+    let h = by_pair_kind!(na, n - na, gap_hessian(state, d));
     let smallest = sym_eigenvalues(&h, n)[..n]
         .iter()
         .fold(f64::INFINITY, |m, l| m.min(l.abs()));
     let rounding = 256.0 * EPS * (1.0 + ell * curvature);
     (smallest / ell, smallest <= rounding)
+}
+
+/// The scaled Hessian of f at `state` with the connecting vector replaced by `d` (A's frame,
+/// mm), for `NA` parameters on A and `NB` on B: H_ij = (s_i s_j ∂P/∂x_i · ∂P/∂x_j + s_i d ·
+/// ∂²P/∂x_i∂x_j) / (speed_i speed_j), s = +1 on A and −1 on B, the second term only within one
+/// side. Symmetric term by term, so the upper triangle is mirrored.
+fn gap_hessian<const NA: usize, const NB: usize>(state: &State, d: DVec3) -> [[f64; 4]; 4] {
+    let n = NA + NB;
+    let mut first = [DVec3::ZERO; 4];
+    first[..NA].copy_from_slice(&state.ea.d[..NA]);
+    first[NA..n].copy_from_slice(&state.eb.d[..NB]);
+    let mut h = [[0.0; 4]; 4];
+    for i in 0..n {
+        for j in i..n {
+            let (si, sj) = (
+                if i < NA { 1.0 } else { -1.0 },
+                if j < NA { 1.0 } else { -1.0 },
+            );
+            let second = match (i < NA, j < NA) {
+                (true, true) => d.dot(state.ea.dd[i][j]),
+                (false, false) => -d.dot(state.eb.dd[i - NA][j - NA]),
+                _ => 0.0,
+            };
+            h[i][j] =
+                (si * sj * first[i].dot(first[j]) + second) / (state.speed[i] * state.speed[j]);
+            h[j][i] = h[i][j];
+        }
+    }
+    h
 }

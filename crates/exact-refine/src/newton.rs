@@ -16,7 +16,9 @@
 
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
-use crate::dense_solve::{cholesky, cholesky_solve, smallest_eigenvalue_bound};
+use crate::dense_solve::{
+    by_size, cholesky, cholesky_n, cholesky_solve_n, smallest_eigenvalue_bound,
+};
 use crate::feature_eval::{Body, FeatureEval, Loc, params, with_params};
 use crate::feature_switch::{
     into_faces, onto_nearest_edge, reenter, settle, settle_start, snap_to_sides,
@@ -27,6 +29,26 @@ use crate::penetration::{edge_pair_witness, saddle_newton, solve_penetration};
 use crate::sym_eigen::{SymEigen, sym_eigen};
 use geom_param::{DVec3, FeatureLocation, ParamRange};
 use std::f64::consts::PI;
+
+/// Calls `f::<NA, NB>(args)` for the pair kind (`na`, `nb`) parameters on A and B (each 0, 1
+/// or 2; larger counts are taken as 2): one monomorphised copy per kind, whose loops over
+/// constant sizes the compiler unrolls.
+macro_rules! by_pair_kind {
+    ($na:expr, $nb:expr, $f:ident($($arg:expr),*)) => {
+        match ($na, $nb) {
+            (0, 0) => $f::<0, 0>($($arg),*),
+            (0, 1) => $f::<0, 1>($($arg),*),
+            (0, _) => $f::<0, 2>($($arg),*),
+            (1, 0) => $f::<1, 0>($($arg),*),
+            (1, 1) => $f::<1, 1>($($arg),*),
+            (1, _) => $f::<1, 2>($($arg),*),
+            (_, 0) => $f::<2, 0>($($arg),*),
+            (_, 1) => $f::<2, 1>($($arg),*),
+            (_, _) => $f::<2, 2>($($arg),*),
+        }
+    };
+}
+pub(crate) use by_pair_kind;
 
 /// Rounding unit.
 pub(crate) const EPS: f64 = f64::EPSILON;
@@ -79,43 +101,12 @@ impl State {
             .max(ea.point.length())
             .max(eb.point.length())
             .max(f64::MIN_POSITIVE);
-        let mut first = [DVec3::ZERO; 4];
-        first[..na].copy_from_slice(&ea.d[..na]);
-        first[na..n].copy_from_slice(&eb.d[..eb.n]);
-        let max_speed = first[..n].iter().fold(0.0_f64, |m, v| m.max(v.length()));
-        let floor = (1e-12 * max_speed).max(f64::MIN_POSITIVE.sqrt());
-        let mut speed = [1.0; 4];
-        for i in 0..n {
-            speed[i] = first[i].length().max(floor);
-        }
-        let mut gs = [0.0; 4];
-        let mut hs = [[0.0; 4]; 4];
-        // Squared, so that the loop takes no square roots.
-        let mut curvature2 = 0.0_f64;
-        for i in 0..n {
-            let (si, ai) = if i < na { (1.0, true) } else { (-1.0, false) };
-            gs[i] = si * d.dot(first[i]) / speed[i];
-            // The Hessian is symmetric: fill the upper triangle and mirror it.
-            for j in i..n {
-                let sj = if j < na { 1.0 } else { -1.0 };
-                let same_side = (j < na) == ai;
-                let speeds = speed[i] * speed[j];
-                let second = if same_side {
-                    let dd = if ai {
-                        ea.dd[i][j]
-                    } else {
-                        eb.dd[i - na][j - na]
-                    };
-                    curvature2 = curvature2.max(dd.length_squared() / (speeds * speeds));
-                    si * d.dot(dd)
-                } else {
-                    0.0
-                };
-                hs[i][j] = (si * sj * first[i].dot(first[j]) + second) / speeds;
-                hs[j][i] = hs[i][j];
-            }
-        }
-        let curvature = curvature2.sqrt();
+        let Assembled {
+            speed,
+            gs,
+            hs,
+            curvature,
+        } = by_pair_kind!(ea.n, eb.n, assemble(&ea, &eb, d));
         Self {
             la,
             lb,
@@ -148,9 +139,7 @@ impl State {
 
     /// Rounding floor of the scaled Hessian's eigenvalues: below it an eigenvalue is zero.
     pub(crate) fn eigen_floor(&self, values: &[f64; 4]) -> f64 {
-        let largest = values[..self.n]
-            .iter()
-            .fold(0.0_f64, |m, l| m.max(l.abs()));
+        let largest = values[..self.n].iter().fold(0.0_f64, |m, l| m.max(l.abs()));
         64.0 * EPS * (largest + self.scale * self.curvature)
     }
 
@@ -210,6 +199,73 @@ impl State {
 
     fn merit(&self) -> f64 {
         0.5 * self.d.length_squared()
+    }
+}
+
+/// The variable scaling, scaled gradient and Hessian and curvature scale of a [`State`].
+struct Assembled {
+    speed: [f64; 4],
+    gs: [f64; 4],
+    hs: [[f64; 4]; 4],
+    curvature: f64,
+}
+
+/// [`State`]'s scaled gradient g_i / speed_i and Hessian H_ij / (speed_i speed_j) of
+/// f = ½|d|², d = P_a − P_b, for `NA` parameters on A (`ea`) and `NB` on B (`eb`): with s_i = +1
+/// on A and −1 on B, g_i = s_i d · ∂P/∂x_i and H_ij = s_i s_j ∂P/∂x_i · ∂P/∂x_j + s_i d · ∂²P/∂x_i∂x_j
+/// (the second term only within one side). Constant sizes let the compiler unroll the loops
+/// for each of the nine feature pair kinds; the arithmetic and its order are the same for all.
+fn assemble<const NA: usize, const NB: usize>(
+    ea: &FeatureEval,
+    eb: &FeatureEval,
+    d: DVec3,
+) -> Assembled {
+    let n = NA + NB;
+    let mut first = [DVec3::ZERO; 4];
+    first[..NA].copy_from_slice(&ea.d[..NA]);
+    first[NA..n].copy_from_slice(&eb.d[..NB]);
+    let mut length = [0.0; 4];
+    for i in 0..n {
+        length[i] = first[i].length();
+    }
+    let max_speed = length[..n].iter().fold(0.0_f64, |m, l| m.max(*l));
+    let floor = (1e-12 * max_speed).max(f64::MIN_POSITIVE.sqrt());
+    let mut speed = [1.0; 4];
+    for i in 0..n {
+        speed[i] = length[i].max(floor);
+    }
+    let mut gs = [0.0; 4];
+    let mut hs = [[0.0; 4]; 4];
+    // Squared, so that the loop takes no square roots.
+    let mut curvature2 = 0.0_f64;
+    for i in 0..n {
+        let (si, ai) = if i < NA { (1.0, true) } else { (-1.0, false) };
+        gs[i] = si * d.dot(first[i]) / speed[i];
+        // The Hessian is symmetric: fill the upper triangle and mirror it.
+        for j in i..n {
+            let sj = if j < NA { 1.0 } else { -1.0 };
+            let same_side = (j < NA) == ai;
+            let speeds = speed[i] * speed[j];
+            let second = if same_side {
+                let dd = if ai {
+                    ea.dd[i][j]
+                } else {
+                    eb.dd[i - NA][j - NA]
+                };
+                curvature2 = curvature2.max(dd.length_squared() / (speeds * speeds));
+                si * d.dot(dd)
+            } else {
+                0.0
+            };
+            hs[i][j] = (si * sj * first[i].dot(first[j]) + second) / speeds;
+            hs[j][i] = hs[i][j];
+        }
+    }
+    Assembled {
+        speed,
+        gs,
+        hs,
+        curvature: curvature2.sqrt(),
     }
 }
 
@@ -774,7 +830,12 @@ fn newton_step(cur: &State) -> Option<[f64; 4]> {
 /// 30-degree limit; at the answer g = 0, so M = H and convergence stays quadratic. Where M is
 /// positive definite so is H (M ≤ H), so this never replaces a saddle-free step.
 fn distance_newton_step(cur: &State) -> Option<[f64; 4]> {
-    let n = cur.n;
+    by_size!(cur.n, distance_newton_step_n(cur))
+}
+
+/// [`distance_newton_step`] for `N` = `cur.n` variables.
+fn distance_newton_step_n<const N: usize>(cur: &State) -> Option<[f64; 4]> {
+    let n = N;
     let distance2 = cur.d.length_squared();
     let tangential2: f64 = cur.gs[..n].iter().map(|g| g * g).sum();
     // |d| well above rounding (its direction means something), the angle below 30 degrees.
@@ -788,14 +849,19 @@ fn distance_newton_step(cur: &State) -> Option<[f64; 4]> {
             m[i][j] -= cur.gs[i] * cur.gs[j] / distance2;
         }
     }
-    positive_definite_solve(cur, &m)
+    positive_definite_solve_n::<N>(cur, &m)
 }
 
 /// −M⁻¹g for the scaled gradient g of `cur`, where M factors and its smallest eigenvalue
 /// provably exceeds the eigenvalue floor of `cur` with ‖M‖_F for the largest; `None` otherwise.
 fn positive_definite_solve(cur: &State, m: &[[f64; 4]; 4]) -> Option<[f64; 4]> {
-    let n = cur.n;
-    let l = cholesky(m, n)?;
+    by_size!(cur.n, positive_definite_solve_n(cur, m))
+}
+
+/// [`positive_definite_solve`] for `N` = `cur.n` variables.
+fn positive_definite_solve_n<const N: usize>(cur: &State, m: &[[f64; 4]; 4]) -> Option<[f64; 4]> {
+    let n = N;
+    let l = cholesky_n::<N>(m)?;
     let frobenius = m[..n]
         .iter()
         .flat_map(|row| &row[..n])
@@ -803,10 +869,10 @@ fn positive_definite_solve(cur: &State, m: &[[f64; 4]; 4]) -> Option<[f64; 4]> {
         .sum::<f64>()
         .sqrt();
     let floor = (64.0 * EPS * (frobenius + cur.scale * cur.curvature)).max(f64::MIN_POSITIVE);
-    if smallest_eigenvalue_bound(&l, n) < floor {
+    if smallest_eigenvalue_bound::<N>(&l) < floor {
         return None;
     }
-    let x = cholesky_solve(&l, n, &cur.gs);
+    let x = cholesky_solve_n::<N>(&l, &cur.gs);
     Some(std::array::from_fn(|i| -x[i]))
 }
 

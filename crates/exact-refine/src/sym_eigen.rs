@@ -113,7 +113,11 @@ fn jacobi<const N: usize, const VECTORS: bool>(matrix: &[[f64; 4]; 4]) -> SymEig
     let mut order = [0, 1, 2, 3];
     for i in 1..N {
         let mut j = i;
-        while j > 0 && a[order[j - 1]][order[j - 1]].total_cmp(&a[order[j]][order[j]]).is_gt() {
+        while j > 0
+            && a[order[j - 1]][order[j - 1]]
+                .total_cmp(&a[order[j]][order[j]])
+                .is_gt()
+        {
             order.swap(j - 1, j);
             j -= 1;
         }
@@ -141,7 +145,13 @@ mod tests {
         for i in 0..n {
             q[i][i] = 1.0;
         }
-        for (p, r, angle) in [(0, 1, 0.7), (1, 2, -1.1), (0, 3, 0.4), (2, 3, 2.3), (0, 2, 0.9)] {
+        for (p, r, angle) in [
+            (0, 1, 0.7),
+            (1, 2, -1.1),
+            (0, 3, 0.4),
+            (2, 3, 2.3),
+            (0, 2, 0.9),
+        ] {
             if r >= n {
                 continue;
             }
@@ -173,7 +183,10 @@ mod tests {
             let eigen = sym_eigen(&m, n);
             let only = sym_eigenvalues(&m, n);
             for k in 0..n {
-                assert!((eigen.values[k] - sorted[k]).abs() <= 1e-13 * 40.0, "n {n} k {k}");
+                assert!(
+                    (eigen.values[k] - sorted[k]).abs() <= 1e-13 * 40.0,
+                    "n {n} k {k}"
+                );
                 assert_eq!(eigen.values[k].to_bits(), only[k].to_bits(), "n {n} k {k}");
                 for i in 0..n {
                     let mv: f64 = (0..n).map(|j| m[i][j] * eigen.vectors[j][k]).sum();
