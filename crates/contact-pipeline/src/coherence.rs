@@ -136,11 +136,15 @@ struct Tracked {
 }
 
 impl Tracked {
+    /// The minimum `m` refined with B posed by `pose_ab` in A's frame, `inverse_ab` being
+    /// `pose_ab.inverse()`.
+    #[allow(clippy::too_many_arguments)]
     fn new(
         m: &RefinedContact,
         ca: ComponentId,
         cb: ComponentId,
         pose_ab: &DPose3,
+        inverse_ab: &DPose3,
         model_a: &ObjectModel,
         model_b: &ObjectModel,
         id: Option<ContactId>,
@@ -148,7 +152,7 @@ impl Tracked {
         Self {
             seed: seed_from(m, ca, cb, model_a, model_b),
             local_a: m.point_a,
-            local_b: pose_ab.inverse() * m.point_b,
+            local_b: *inverse_ab * m.point_b,
             distance: m.distance,
             at: *pose_ab,
             id,
@@ -343,11 +347,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             && report.state != PairState::Penetration
             && record.minima.iter().all(|(m, _, _)| isolated(m));
         if trackable {
-            cache.tracked.extend(
-                record.minima.iter().map(|(m, ca, cb)| {
-                    Tracked::new(m, *ca, *cb, pose_ab, &a.model, &b.model, None)
-                }),
-            );
+            let inverse_ab = pose_ab.inverse();
+            cache
+                .tracked
+                .extend(record.minima.iter().map(|(m, ca, cb)| {
+                    Tracked::new(m, *ca, *cb, pose_ab, &inverse_ab, &a.model, &b.model, None)
+                }));
             cache.reference = Some(*pose_ab);
             cache.slack = slack;
             cache.ball_b = (b.bounding_centre, b.bounding_radius);
@@ -376,12 +381,23 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let scale = a.model.scale.max(b.model.scale);
         cache.ids.clear();
         let ball = cache.ball_b;
+        let inverse_ab = pose_ab.inverse();
+        // The motion bound since the pose a minimum was last refined at: minima refined in the
+        // same frame share it, so the last one is kept.
+        let mut last_bound: Option<(DPose3, f64)> = None;
         // Pass 1: refine the minima that may be in the band now (a minimum's value changes by
         // at most the motion since it was refined) and check that each was followed.
         let mut refined_now = std::mem::take(&mut cache.refined_now);
         refined_now.clear();
         for (k, t) in cache.tracked.iter().enumerate() {
-            let moved = motion_bound(&t.at, pose_ab, ball);
+            let moved = match last_bound {
+                Some((at, moved)) if same_pose(&at, &t.at) => moved,
+                _ => {
+                    let moved = motion_bound(&t.at, pose_ab, ball);
+                    last_bound = Some((t.at, moved));
+                    moved
+                }
+            };
             if t.distance - moved > options.delta2 {
                 continue;
             }
@@ -394,7 +410,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             );
             report.stats.refined += 1;
             let travel = WARM_POINT_TRAVEL * moved + ISOLATED_POINT_ERROR;
-            let local_b = pose_ab.inverse() * refined.point_b;
+            let local_b = inverse_ab * refined.point_b;
             let followed = isolated(&refined)
                 && refined.diagnostics.iterations <= WARM_MAX_ITERATIONS
                 && refined.point_a.distance(t.local_a) <= travel
@@ -421,6 +437,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 t.seed.a.component,
                 t.seed.b.component,
                 pose_ab,
+                &inverse_ab,
                 &a.model,
                 &b.model,
                 t.id,
@@ -453,6 +470,23 @@ fn isolated(m: &RefinedContact) -> bool {
     m.diagnostics.status == RefineStatus::Converged
         && m.diagnostics.is_local_minimum
         && m.diagnostics.point_error_estimate <= ISOLATED_POINT_ERROR
+}
+
+/// Whether two poses are the same bits (so that a function of one is the same for the other).
+fn same_pose(p: &DPose3, q: &DPose3) -> bool {
+    let bits = |p: &DPose3| {
+        [
+            p.translation.x,
+            p.translation.y,
+            p.translation.z,
+            p.rotation.x,
+            p.rotation.y,
+            p.rotation.z,
+            p.rotation.w,
+        ]
+        .map(f64::to_bits)
+    };
+    bits(p) == bits(q)
 }
 
 /// The path length bound of the module documentation: |P1 c − P0 c| + ω r (mm) for the ball
