@@ -19,7 +19,7 @@
 use crate::dense_solve::{
     by_size, cholesky, cholesky_n, cholesky_solve_n, smallest_eigenvalue_bound,
 };
-use crate::feature_eval::{Body, FeatureEval, Loc, params, with_params};
+use crate::feature_eval::{Body, FeatureEval, Loc, LocalFacePoint, params, with_params};
 use crate::feature_switch::{
     into_faces, onto_nearest_edge, reenter, settle, settle_start, snap_to_sides,
     snap_within_distance,
@@ -94,7 +94,20 @@ impl State {
     }
 
     pub(crate) fn new(a: &Body, b: &Body, la: Loc, lb: Loc, base_scale: f64) -> Self {
-        let (ea, eb) = (a.eval(&la), b.eval(&lb));
+        Self::evaluated(a, b, la, lb, base_scale, [None, None])
+    }
+
+    /// [`Self::new`], taking each face's surface evaluation from `known` (A's, B's) where it
+    /// is of that face point ([`Body::eval_reusing`]).
+    pub(crate) fn evaluated(
+        a: &Body,
+        b: &Body,
+        la: Loc,
+        lb: Loc,
+        base_scale: f64,
+        known: [Option<&LocalFacePoint>; 2],
+    ) -> Self {
+        let (ea, eb) = (a.eval_reusing(&la, known[0]), b.eval_reusing(&lb, known[1]));
         let d = ea.point - eb.point;
         let (na, n) = (ea.n, ea.n + eb.n);
         let scale = base_scale
@@ -302,14 +315,18 @@ pub(crate) fn solve(
     base_scale: f64,
     options: &NewtonOptions,
 ) -> Solution {
-    let mut first = minimize(
+    // The start's snap evaluates each face there; the first state reuses those evaluations.
+    let mut known = [None, None];
+    let la = settle_start(a, la, &mut known[0]);
+    let lb = settle_start(b, lb, &mut known[1]);
+    let mut first = minimize_known(
         a,
         b,
-        settle_start(a, la),
-        settle_start(b, lb),
+        (la, lb),
         base_scale,
         options,
         Reentry::Allowed,
+        [known[0].as_ref(), known[1].as_ref()],
     );
     if first.outcome == Outcome::IterationLimit {
         // Slow, not lost: at an exact touch the gap is quartic in the offset along the flattest
@@ -698,7 +715,21 @@ pub(crate) fn minimize(
     options: &NewtonOptions,
     reentry: Reentry,
 ) -> Solution {
-    let mut cur = State::new(a, b, la, lb, base_scale);
+    minimize_known(a, b, (la, lb), base_scale, options, reentry, [None, None])
+}
+
+/// [`minimize`], the first state taking each face's evaluation from `known` where it is of that
+/// face point ([`State::evaluated`]).
+fn minimize_known(
+    a: &Body,
+    b: &Body,
+    (la, lb): (Loc, Loc),
+    base_scale: f64,
+    options: &NewtonOptions,
+    reentry: Reentry,
+    known: [Option<&LocalFacePoint>; 2],
+) -> Solution {
+    let mut cur = State::evaluated(a, b, la, lb, base_scale, known);
     let (max_radius, mut radius) = cur.trust_radii();
     let mut switches = 0;
     let end = |state, iterations, outcome| Solution {
