@@ -80,6 +80,9 @@ pub(crate) struct State {
     pub scale: f64,
     /// Largest |∂²P/∂x_i∂x_j| / (speed_i speed_j) (1/mm): curvature scale of the Hessian.
     pub curvature: f64,
+    /// A's and B's outward directions at the points once a penetration test of the solve
+    /// took them ([`Self::penetrating_remembered`]), for the later questions about this state.
+    outward: Option<(Option<DVec3>, Option<DVec3>)>,
 }
 
 impl State {
@@ -133,6 +136,7 @@ impl State {
             hs,
             scale,
             curvature,
+            outward: None,
         }
     }
 
@@ -175,14 +179,38 @@ impl State {
         if penetrating { -1.0 } else { 1.0 }
     }
 
-    /// A's outward direction at its point ([`Body::outward_at`]).
+    /// A's outward direction at its point ([`Body::outward_at`]; `a` is the body the state
+    /// was assembled with).
     pub(crate) fn outward_a(&self, a: &Body) -> Option<DVec3> {
-        a.outward_at(&self.la, &self.ea)
+        match self.outward {
+            Some((n, _)) => n,
+            None => a.outward_at(&self.la, &self.ea),
+        }
     }
 
     /// B's outward direction at its point.
     pub(crate) fn outward_b(&self, b: &Body) -> Option<DVec3> {
-        b.outward_at(&self.lb, &self.eb)
+        match self.outward {
+            Some((_, n)) => n,
+            None => b.outward_at(&self.lb, &self.eb),
+        }
+    }
+
+    /// [`Self::penetrating`], keeping the outward directions it takes in the state: a solve
+    /// that ends here asks for them again (diagnostics, signed distance). The same numbers
+    /// either way: both are [`Body::outward_at`] of the state's own locations and evaluations.
+    pub(crate) fn penetrating_remembered(&mut self, a: &Body, b: &Body) -> bool {
+        let takes_outward = self.na > 0
+            && self.na < self.n
+            && self.d.length() > 1e3 * EPS * self.scale
+            && self.outward.is_none();
+        if takes_outward {
+            self.outward = Some((
+                a.outward_at(&self.la, &self.ea),
+                b.outward_at(&self.lb, &self.eb),
+            ));
+        }
+        self.penetrating(a, b)
     }
 
     /// Whether the pair penetrates ([`Self::sign`] negative) with parameters on both sides:
@@ -743,7 +771,7 @@ fn minimize_known(
     // (its model failed there, e.g. approaching an intersection curve, where |d| has a kink).
     let mut distance_ok = true;
     for iteration in 0..options.max_iterations {
-        if fresh && reentry == Reentry::Allowed && cur.penetrating(a, b) {
+        if fresh && reentry == Reentry::Allowed && cur.penetrating_remembered(a, b) {
             return end(cur, iteration, Outcome::Penetrating);
         }
         fresh = true;
