@@ -31,7 +31,8 @@
 //! 2. a minimum above `delta2 + s` at P0 stays above `delta2` at P1 and is not missed; by
 //!    the same bound a tracked minimum last refined at P' with value v is not refined again
 //!    while v − moved(P', P1) > delta2 (it cannot be in the band yet);
-//! 3. each tracked minimum is followed by Newton from its last feature locations, which the
+//! 3. each tracked minimum is followed by Newton from its last feature locations (or, while B
+//!    moves at a steady pace, from their linear extrapolation, see [`warm_start`]), which the
 //!    cache checks: every refinement must converge ([`RefineStatus::Converged`]) to an isolated
 //!    local minimum (point error below [`ISOLATED_POINT_ERROR`]) at or above delta1, and no two
 //!    tracked minima may reach the same point pair (a minimum that vanished or was jumped
@@ -61,7 +62,9 @@ use crate::pipeline::{
 use crate::report::{PairReport, PairState};
 use bvh_hybrid::BroadPhase;
 use exact_refine::{RefineStatus, RefinedContact, Refiner};
-use geom_param::{ComponentId, DPose3, FeatureId, FeatureLocation, ObjectModel, Seed, SeedPoint};
+use geom_param::{
+    ComponentId, DPose3, FeatureId, FeatureLocation, ObjectModel, ParamRange, Seed, SeedPoint,
+};
 use glam::DVec3;
 use mesh_narrowphase::MeshPhase;
 use std::time::Instant;
@@ -133,6 +136,17 @@ struct Tracked {
     distance: f64,
     at: DPose3,
     id: Option<ContactId>,
+    /// The refinement before the last one, when the last one was a warm frame's.
+    before: Option<Before>,
+}
+
+/// A tracked minimum's feature locations and B's pose at the refinement before its last one:
+/// with the last one, a velocity of the minimum's parameters and of the pose.
+#[derive(Clone, Copy, Debug)]
+struct Before {
+    a: FeatureLocation,
+    b: FeatureLocation,
+    at: DPose3,
 }
 
 impl Tracked {
@@ -156,6 +170,7 @@ impl Tracked {
             distance: m.distance,
             at: *pose_ab,
             id,
+            before: None,
         }
     }
 }
@@ -385,6 +400,9 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         // The motion bound since the pose a minimum was last refined at: minima refined in the
         // same frame share it, so the last one is kept.
         let mut last_bound: Option<(DPose3, f64)> = None;
+        // Whether B's motion is steady since the two poses a minimum was last refined at (the
+        // same for minima refined in the same frames, so the last answer is kept).
+        let mut last_steady: Option<(DPose3, DPose3, bool)> = None;
         // Pass 1: refine the minima that may be in the band now (a minimum's value changes by
         // at most the motion since it was refined) and check that each was followed.
         let mut refined_now = std::mem::take(&mut cache.refined_now);
@@ -401,11 +419,33 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             if t.distance - moved > options.delta2 {
                 continue;
             }
+            let seed = match t.before {
+                Some(before) => {
+                    let steady = match last_steady {
+                        Some((at0, at1, steady))
+                            if same_pose(&at0, &before.at) && same_pose(&at1, &t.at) =>
+                        {
+                            steady
+                        }
+                        _ => {
+                            let steady = steady_motion(&before.at, &t.at, pose_ab, ball, moved);
+                            last_steady = Some((before.at, t.at, steady));
+                            steady
+                        }
+                    };
+                    if steady {
+                        warm_start(t, &before, &a.model, &b.model)
+                    } else {
+                        t.seed
+                    }
+                }
+                None => t.seed,
+            };
             let refined = self.refiner.refine(
                 &a.model.solid,
                 &b.model.solid,
                 pose_ab,
-                &t.seed,
+                &seed,
                 scratch.refine_scratch(),
             );
             report.stats.refined += 1;
@@ -432,6 +472,11 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         // Pass 2: update them and report those in the band, in tracking order.
         for (k, refined) in &refined_now {
             let t = &mut cache.tracked[*k];
+            let before = Before {
+                a: t.seed.a.location,
+                b: t.seed.b.location,
+                at: t.at,
+            };
             *t = Tracked::new(
                 refined,
                 t.seed.a.component,
@@ -442,6 +487,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 &b.model,
                 t.id,
             );
+            t.before = Some(before);
             if refined.distance <= options.delta2 {
                 let tolerance = merge_tolerance(refined, scale);
                 // Distinct points (checked above): never merged.
@@ -470,6 +516,80 @@ fn isolated(m: &RefinedContact) -> bool {
     m.diagnostics.status == RefineStatus::Converged
         && m.diagnostics.is_local_minimum
         && m.diagnostics.point_error_estimate <= ISOLATED_POINT_ERROR
+}
+
+/// Whether B moves at a steady pace: the pose one more step of the motion from `at0` (the pose
+/// of the refinement before the last) to `at1` (the last) would reach is nearer to `pose_ab`,
+/// in the motion bound, than `at1` itself is (`moved`).
+fn steady_motion(
+    at0: &DPose3,
+    at1: &DPose3,
+    pose_ab: &DPose3,
+    ball: (DVec3, f64),
+    moved: f64,
+) -> bool {
+    let step = *at1 * at0.inverse();
+    motion_bound(&(step * *at1), pose_ab, ball) < moved
+}
+
+/// The start of a tracked minimum's refinement while B moves at a steady pace: each side's
+/// parameters moved on by their last change (x1 + (x1 − x0), a periodic change taken the
+/// short way round), the predictor of a constant-velocity path; a side on another feature than
+/// before, on a vertex, or whose prediction leaves its feature's parameter range starts where
+/// it was. Only the start moves: the answer is Newton's from there, checked like any other
+/// (module documentation, point 3), and a minimum followed over a small motion converges in
+/// one step fewer from a start that is off by the change of its velocity rather than by its
+/// velocity.
+fn warm_start(t: &Tracked, before: &Before, model_a: &ObjectModel, model_b: &ObjectModel) -> Seed {
+    let mut seed = t.seed;
+    seed.a.location = extrapolated(before.a, t.seed.a.location, model_a);
+    seed.b.location = extrapolated(before.b, t.seed.b.location, model_b);
+    seed
+}
+
+/// `now` moved on by its change since `previous` (see [`warm_start`]), or `now`.
+fn extrapolated(
+    previous: FeatureLocation,
+    now: FeatureLocation,
+    model: &ObjectModel,
+) -> FeatureLocation {
+    let on = |range: ParamRange, x0: f64, x1: f64| {
+        let mut change = x1 - x0;
+        if range.periodic {
+            let period = range.max - range.min;
+            change -= period * (change / period).round();
+        }
+        let x = x1 + change;
+        (x.is_finite() && (range.periodic || (x > range.min && x < range.max))).then_some(x)
+    };
+    let solid = &model.solid;
+    let moved = match (previous, now) {
+        (
+            FeatureLocation::Face {
+                id: f0,
+                u: u0,
+                v: v0,
+            },
+            FeatureLocation::Face { id, u, v },
+        ) if f0 == id => solid.faces.get(id.0 as usize).and_then(|face| {
+            let [du, dv] = face.surface.domain();
+            Some(FeatureLocation::Face {
+                id,
+                u: on(du, u0, u)?,
+                v: on(dv, v0, v)?,
+            })
+        }),
+        (FeatureLocation::Edge { id: e0, t: t0 }, FeatureLocation::Edge { id, t }) if e0 == id => {
+            solid.edges.get(id.0 as usize).and_then(|edge| {
+                Some(FeatureLocation::Edge {
+                    id,
+                    t: on(edge.curve.domain(), t0, t)?,
+                })
+            })
+        }
+        _ => None,
+    };
+    moved.unwrap_or(now)
 }
 
 /// Whether two poses are the same bits (so that a function of one is the same for the other).
@@ -592,8 +712,66 @@ fn assign_full_ids(
 
 #[cfg(test)]
 mod tests {
-    use super::motion_bound;
-    use geom_param::{DPose3, DQuat, DVec3};
+    use super::{extrapolated, motion_bound, steady_motion};
+    use crate::{ContactOptions, ContactPipeline};
+    use geom_param::{DPose3, DQuat, DVec3, FaceId, FeatureLocation, ObjectDescription, VertexId};
+
+    /// A ball of radius 10 mm: one face of revolution, u the angle about z (periodic, [0, 2π)),
+    /// v in [0, 1] from pole to pole.
+    fn ball() -> geom_param::ObjectModel {
+        let pipeline = ContactPipeline::new(ContactOptions::default()).expect("options");
+        let ball = ObjectDescription::from_json(
+            r#"{"name": "ball", "profile": [{"arc": {"center": [0, 0], "from": [0, -10], "to": [0, 10], "ccw": true}}]}"#,
+        )
+        .expect("description");
+        pipeline.prepare_description(&ball).expect("prepares").model
+    }
+
+    /// The prediction moves each parameter on by its last change (a periodic one the short way
+    /// across 2π), and keeps a location whose prediction would leave its range, changes
+    /// feature, or has no parameters.
+    #[test]
+    fn extrapolation_moves_parameters_on_by_their_last_change() {
+        let model = ball();
+        let face = |u, v| FeatureLocation::Face {
+            id: FaceId(0),
+            u,
+            v,
+        };
+        let two_pi = std::f64::consts::TAU;
+        // u went from 6.2 across 2π to 0.05: a change of 0.05 + 2π − 6.2.
+        let FeatureLocation::Face { u, v, .. } =
+            extrapolated(face(6.2, 0.5), face(0.05, 0.52), &model)
+        else {
+            panic!("a face stays a face");
+        };
+        assert!((u - (0.05 + (0.05 + two_pi - 6.2))).abs() < 1e-12, "u {u}");
+        assert!((v - 0.54).abs() < 1e-12, "v {v}");
+        // v would reach 1.03, beyond the pole: the start stays where it is.
+        assert_eq!(
+            extrapolated(face(1.0, 0.95), face(1.0, 0.99), &model),
+            face(1.0, 0.99)
+        );
+        let vertex = FeatureLocation::Vertex { id: VertexId(0) };
+        assert_eq!(extrapolated(vertex, face(1.0, 0.5), &model), face(1.0, 0.5));
+        assert_eq!(extrapolated(face(1.0, 0.5), vertex, &model), vertex);
+    }
+
+    /// Equal steps of a turn are steady; a step that undoes the last one (a reversal) and a
+    /// pause are not.
+    #[test]
+    fn steady_motion_is_a_repeated_step() {
+        let ball = (DVec3::new(0.0, 0.0, 5.0), 10.0);
+        let turn = |angle: f64| {
+            DPose3::from_parts(DVec3::new(20.0, 0.0, 0.0), DQuat::from_rotation_x(angle))
+        };
+        let (p0, p1) = (turn(0.0), turn(1e-3));
+        let moved = |p: &DPose3| motion_bound(&p1, p, ball);
+        let p2 = turn(2e-3);
+        assert!(steady_motion(&p0, &p1, &p2, ball, moved(&p2)));
+        assert!(!steady_motion(&p0, &p1, &p0, ball, moved(&p0)));
+        assert!(!steady_motion(&p0, &p1, &p1, ball, moved(&p1)));
+    }
 
     /// The bound covers the straight displacement of every point of the ball (sampled densely
     /// on its sphere, where the largest displacement lies), and equals the closed forms of a
