@@ -175,12 +175,13 @@ impl Tracked {
     }
 }
 
-/// The last frame's contact, for matching ids after a full query: points in their own object's
-/// frames and features.
+/// The last frame's contact, for matching ids after a full query: points in the world frame
+/// (each taken to its own object's frame with [`PairCache::last_poses`] when a full query
+/// needs them, so a warm frame does not transform them) and features.
 #[derive(Clone, Copy, Debug)]
 struct LastContact {
-    local_a: DVec3,
-    local_b: DVec3,
+    point_a: DVec3,
+    point_b: DVec3,
     features: (FeatureId, FeatureId),
     id: ContactId,
 }
@@ -201,6 +202,8 @@ pub struct PairCache {
     warm_frames: u32,
     tracked: Vec<Tracked>,
     last: Vec<LastContact>,
+    /// A's and B's world poses (normalised) of the frame of `last`.
+    last_poses: (DPose3, DPose3),
     ids: Vec<ContactId>,
     next_id: u64,
     kind: Option<FrameKind>,
@@ -315,7 +318,6 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             FrameKind::Full
         };
         cache.kind = Some(kind);
-        let (inv_a, inv_b) = (checked_a.inverse(), checked_b.inverse());
         last.clear();
         last.extend(
             report
@@ -323,13 +325,14 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 .iter()
                 .zip(&cache.ids)
                 .map(|(c, &id)| LastContact {
-                    local_a: inv_a * c.point_a,
-                    local_b: inv_b * c.point_b,
+                    point_a: c.point_a,
+                    point_b: c.point_b,
                     features: (c.location_a.feature(), c.location_b.feature()),
                     id,
                 }),
         );
         cache.last = last;
+        cache.last_poses = (checked_a, checked_b);
         Ok(kind)
     }
 
@@ -663,12 +666,14 @@ fn assign_full_ids(
     coherence: &CoherenceOptions,
 ) {
     let (inv_a, inv_b) = (pose_a.inverse(), pose_b.inverse());
+    let (old_inv_a, old_inv_b) = (cache.last_poses.0.inverse(), cache.last_poses.1.inverse());
     let mut candidates: Vec<(bool, f64, usize, usize)> = Vec::new();
     for (i, c) in report.contacts.iter().enumerate() {
         let (la, lb) = (inv_a * c.point_a, inv_b * c.point_b);
         let features = (c.location_a.feature(), c.location_b.feature());
         for (j, o) in old.iter().enumerate() {
-            let d = la.distance(o.local_a).max(lb.distance(o.local_b));
+            let (old_a, old_b) = (old_inv_a * o.point_a, old_inv_b * o.point_b);
+            let d = la.distance(old_a).max(lb.distance(old_b));
             if d <= coherence.id_match_distance {
                 candidates.push((o.features != features, d, i, j));
             }
