@@ -7,7 +7,7 @@
 use crate::feature_eval::Body;
 use crate::newton::{EPS, Outcome, Solution, State, by_pair_kind, is_touch};
 use crate::refiner::{RefineDiagnostics, RefineStatus};
-use crate::sym_eigen::sym_eigenvalues;
+use crate::sym_eigen::sym_eigenvalues_pair;
 use geom_param::DVec3;
 
 /// Diagnostics of `solution` (a pair solve between `a` and `b`) whose unit normal from A to B
@@ -20,7 +20,9 @@ pub(crate) fn diagnose(
 ) -> RefineDiagnostics {
     let state = &solution.state;
     let n = state.n;
-    let spectrum = sym_eigenvalues(&state.hs, n);
+    // Both spectra at once (independent chains of divisions and roots).
+    let gap = GapHessian::new(state, normal);
+    let [spectrum, gap_spectrum] = sym_eigenvalues_pair(&state.hs, &gap.h, n);
     let values = &spectrum[..n];
     let floor = state.eigen_floor(&spectrum);
     let largest = values.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
@@ -42,7 +44,7 @@ pub(crate) fn diagnose(
         0 => values.first().is_none_or(|&l| l >= -floor),
         k => values[k - 1] <= floor && values.get(k).is_none_or(|&l| l >= -floor),
     };
-    let (kappa, degenerate) = relative_curvature(state, normal);
+    let (kappa, degenerate) = gap.relative_curvature(&gap_spectrum, n);
     let status = match solution.outcome {
         Outcome::Converged if degenerate => RefineStatus::ContinuousContact,
         Outcome::Converged => RefineStatus::Converged,
@@ -130,30 +132,48 @@ pub(crate) fn gap_within_error(
     gap <= error_estimate + slope * point_error_estimate
 }
 
-/// The smallest curvature of the gap function (1/mm) over the directions of the pair's
-/// parameters, and whether it is zero to rounding (a continuous contact).
-///
-/// With the features a distance ℓ apart along `normal`, the Hessian of f has a Schur complement
-/// of about ℓ(K_a + K_b) − ℓ²K_a² in the rolling directions, so its smallest eigenvalue over ℓ
-/// is the curvature of the gap. ℓ is the actual gap |σ| (which makes concentric spheres of
-/// different radii exactly degenerate), floored at √ε / (curvature scale) at touch, where the rounding of the eigenvalue
-/// (256 ε (1 + ℓ·curvature)) then resolves relative curvatures down to about 4e-6 of the
-/// curvature scale. Zero for
-/// parallel cylinders, flat faces and concentric spheres.
-fn relative_curvature(state: &State, normal: DVec3) -> (f64, bool) {
-    let (n, na) = (state.n, state.na);
-    if n == 0 {
-        return (f64::INFINITY, false);
+/// The Hessian whose spectrum gives the relative curvature of the gap (see
+/// [`GapHessian::relative_curvature`]), with the gap ℓ and curvature scale it was built with.
+struct GapHessian {
+    h: [[f64; 4]; 4],
+    ell: f64,
+    curvature: f64,
+}
+
+impl GapHessian {
+    /// With the features a distance ℓ apart along `normal`, the Hessian of f has a Schur
+    /// complement of about ℓ(K_a + K_b) − ℓ²K_a² in the rolling directions, so its smallest
+    /// eigenvalue over ℓ is the curvature of the gap. ℓ is the actual gap |σ| (which makes
+    /// concentric spheres of different radii exactly degenerate), floored at √ε / (curvature
+    /// scale) at touch, where the rounding of the eigenvalue (256 ε (1 + ℓ·curvature)) then
+    /// resolves relative curvatures down to about 4e-6 of the curvature scale. (No variables:
+    /// an empty matrix.)
+    fn new(state: &State, normal: DVec3) -> Self {
+        let (n, na) = (state.n, state.na);
+        let curvature = state.curvature.max(1.0 / state.scale);
+        let ell = state.d.length().max(EPS.sqrt() / curvature);
+        let h = if n == 0 {
+            [[0.0; 4]; 4]
+        } else {
+            by_pair_kind!(na, n - na, gap_hessian(state, -normal * ell))
+        };
+        Self { h, ell, curvature }
     }
-    let curvature = state.curvature.max(1.0 / state.scale);
-    let ell = state.d.length().max(EPS.sqrt() / curvature);
-    let d = -normal * ell;
-    let h = by_pair_kind!(na, n - na, gap_hessian(state, d));
-    let smallest = sym_eigenvalues(&h, n)[..n]
-        .iter()
-        .fold(f64::INFINITY, |m, l| m.min(l.abs()));
-    let rounding = 256.0 * EPS * (1.0 + ell * curvature);
-    (smallest / ell, smallest <= rounding)
+
+    /// The smallest curvature of the gap function (1/mm) over the directions of the pair's
+    /// parameters, from the eigenvalues `spectrum` of the first `n` rows and columns of `h`,
+    /// and whether it is zero to rounding (a continuous contact). Zero for parallel cylinders,
+    /// flat faces and concentric spheres.
+    fn relative_curvature(&self, spectrum: &[f64; 4], n: usize) -> (f64, bool) {
+        if n == 0 {
+            return (f64::INFINITY, false);
+        }
+        let smallest = spectrum[..n]
+            .iter()
+            .fold(f64::INFINITY, |m, l| m.min(l.abs()));
+        let rounding = 256.0 * EPS * (1.0 + self.ell * self.curvature);
+        (smallest / self.ell, smallest <= rounding)
+    }
 }
 
 /// The scaled Hessian of f at `state` with the connecting vector replaced by `d` (A's frame,

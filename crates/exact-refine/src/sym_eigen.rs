@@ -41,11 +41,129 @@ pub(crate) fn sym_eigenvalues(matrix: &[[f64; 4]; 4], n: usize) -> [f64; 4] {
     .values
 }
 
+/// [`sym_eigenvalues`] of two matrices at once (the leading `n` x `n` blocks of both): each
+/// gets exactly the rotations [`sym_eigenvalues`] would give it, so the same bits, but the two
+/// run in lockstep. A rotation is a chain of divisions and square roots, each waiting for the
+/// last; two independent chains side by side keep the processor busy in each other's waits.
+pub(crate) fn sym_eigenvalues_pair(
+    first: &[[f64; 4]; 4],
+    second: &[[f64; 4]; 4],
+    n: usize,
+) -> [[f64; 4]; 2] {
+    match n {
+        0 => jacobi_pair::<0>(first, second),
+        1 => jacobi_pair::<1>(first, second),
+        2 => jacobi_pair::<2>(first, second),
+        3 => jacobi_pair::<3>(first, second),
+        _ => jacobi_pair::<4>(first, second),
+    }
+}
+
+/// [`sym_eigenvalues_pair`] on the leading `N` x `N` blocks: each matrix stops rotating at the
+/// first sweep that finds it converged, as [`jacobi`] stops, and gets at most `MAX_SWEEPS`.
+fn jacobi_pair<const N: usize>(first: &[[f64; 4]; 4], second: &[[f64; 4]; 4]) -> [[f64; 4]; 2] {
+    let mut a = [*first, *second];
+    let norm2 = a.map(|m| {
+        let mut norm2 = 0.0;
+        for i in 0..N {
+            for j in 0..N {
+                norm2 += m[i][j] * m[i][j];
+            }
+        }
+        norm2
+    });
+    let mut done = [false; 2];
+    for _ in 0..MAX_SWEEPS {
+        for (m, (finished, norm2)) in a.iter().zip(done.iter_mut().zip(norm2)) {
+            if !*finished {
+                let mut off = 0.0;
+                for i in 0..N {
+                    for j in i + 1..N {
+                        off += 2.0 * m[i][j] * m[i][j];
+                    }
+                }
+                *finished = off.is_nan() || off <= 16.0 * f64::EPSILON * f64::EPSILON * norm2;
+            }
+        }
+        if done[0] && done[1] {
+            break;
+        }
+        for p in 0..N {
+            for q in p + 1..N {
+                for (m, finished) in a.iter_mut().zip(done) {
+                    if !finished {
+                        rotate::<N>(m, p, q);
+                    }
+                }
+            }
+        }
+    }
+    a.map(|m| sorted_diagonal::<N>(&m))
+}
+
+/// The diagonal of `a`'s leading `N` x `N` block in ascending order (entries from `N` on
+/// zero), by the stable insertion sort of [`jacobi`].
+fn sorted_diagonal<const N: usize>(a: &[[f64; 4]; 4]) -> [f64; 4] {
+    let mut order = [0, 1, 2, 3];
+    for i in 1..N {
+        let mut j = i;
+        while j > 0
+            && a[order[j - 1]][order[j - 1]]
+                .total_cmp(&a[order[j]][order[j]])
+                .is_gt()
+        {
+            order.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    let mut values = [0.0; 4];
+    for (col, &src) in order.iter().enumerate().take(N) {
+        values[col] = a[src][src];
+    }
+    values
+}
+
+/// Sweeps of [`jacobi`] at most; 4 x 4 matrices need about 4-6, so the cap is never the limit
+/// on finite input.
+const MAX_SWEEPS: usize = 32;
+
+/// The Jacobi rotation of [`jacobi`] that zeroes `a[p][q]` (nothing when it is zero already),
+/// applied to the leading `N` x `N` block of `a`, which it keeps exactly symmetric; returns
+/// (s, τ) for the eigenvectors' update, `None` when there was no rotation.
+fn rotate<const N: usize>(a: &mut [[f64; 4]; 4], p: usize, q: usize) -> Option<(f64, f64)> {
+    let apq = a[p][q];
+    if apq == 0.0 {
+        return None;
+    }
+    // Rotation that zeroes a[p][q] (the stable form of Rutishauser), applied to the two rows
+    // and columns it changes: x' = x - s (y + τ x), y' = y + s (x - τ y) with τ = s / (1 + c),
+    // i.e. (c x - s y, s x + c y).
+    let theta = (a[q][q] - a[p][p]) / (2.0 * apq);
+    let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+    let t = if theta == 0.0 { 1.0 } else { t };
+    let c = 1.0 / (t * t + 1.0).sqrt();
+    let s = t * c;
+    let tau = s / (1.0 + c);
+    a[p][p] -= t * apq;
+    a[q][q] += t * apq;
+    a[p][q] = 0.0;
+    a[q][p] = 0.0;
+    for k in 0..N {
+        if k != p && k != q {
+            let (x, y) = (a[k][p], a[k][q]);
+            a[k][p] = x - s * (y + tau * x);
+            a[k][q] = y + s * (x - tau * y);
+            a[p][k] = a[k][p];
+            a[q][k] = a[k][q];
+        }
+    }
+    Some((s, tau))
+}
+
 /// [`sym_eigen`] on the leading `N` x `N` block, accumulating the eigenvectors when `VECTORS`
 /// (otherwise `vectors` is zero). A constant size lets the compiler unroll the loops; the
 /// arithmetic, and its order, is the same for every `N`.
 fn jacobi<const N: usize, const VECTORS: bool>(matrix: &[[f64; 4]; 4]) -> SymEigen {
-    const MAX_SWEEPS: usize = 32;
     let mut a = *matrix;
     let mut v = [[0.0; 4]; 4];
     if VECTORS {
@@ -72,32 +190,9 @@ fn jacobi<const N: usize, const VECTORS: bool>(matrix: &[[f64; 4]; 4]) -> SymEig
         }
         for p in 0..N {
             for q in p + 1..N {
-                let apq = a[p][q];
-                if apq == 0.0 {
+                let Some((s, tau)) = rotate::<N>(&mut a, p, q) else {
                     continue;
-                }
-                // Rotation that zeroes a[p][q] (the stable form of Rutishauser), applied to the
-                // two rows and columns it changes: x' = x - s (y + τ x), y' = y + s (x - τ y)
-                // with τ = s / (1 + c), i.e. (c x - s y, s x + c y).
-                let theta = (a[q][q] - a[p][p]) / (2.0 * apq);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let t = if theta == 0.0 { 1.0 } else { t };
-                let c = 1.0 / (t * t + 1.0).sqrt();
-                let s = t * c;
-                let tau = s / (1.0 + c);
-                a[p][p] -= t * apq;
-                a[q][q] += t * apq;
-                a[p][q] = 0.0;
-                a[q][p] = 0.0;
-                for k in 0..N {
-                    if k != p && k != q {
-                        let (x, y) = (a[k][p], a[k][q]);
-                        a[k][p] = x - s * (y + tau * x);
-                        a[k][q] = y + s * (x - tau * y);
-                        a[p][k] = a[k][p];
-                        a[q][k] = a[k][q];
-                    }
-                }
+                };
                 if VECTORS {
                     for row in v.iter_mut().take(N) {
                         let (x, y) = (row[p], row[q]);
@@ -136,7 +231,7 @@ fn jacobi<const N: usize, const VECTORS: bool>(matrix: &[[f64; 4]; 4]) -> SymEig
 
 #[cfg(test)]
 mod tests {
-    use super::{sym_eigen, sym_eigenvalues};
+    use super::{sym_eigen, sym_eigenvalues, sym_eigenvalues_pair};
 
     /// A symmetric matrix with a planted spectrum: Q diag(λ) Qᵀ for a rotation Q (a product
     /// of plane rotations), so the eigenvalues are known without this module.
@@ -174,7 +269,7 @@ mod tests {
     /// Every size finds the planted spectrum (ascending, to rounding of the norm), the
     /// vectors satisfy M v = λ v, and the values-only variant gives the same bits.
     #[test]
-    fn planted_spectra_are_found_and_the_values_only_variant_agrees() {
+    fn planted_spectra_are_found_and_the_values_only_variants_agree() {
         let values = [-3.0, 1e-9, 2.5, 40.0];
         for n in 0..=4 {
             let mut sorted = values[..n].to_vec();
@@ -182,6 +277,22 @@ mod tests {
             let m = planted(values, n);
             let eigen = sym_eigen(&m, n);
             let only = sym_eigenvalues(&m, n);
+            // Paired with a matrix that converges in fewer sweeps (nearly diagonal), and with
+            // itself: each keeps its own bits.
+            let mut near_diagonal = [[0.0; 4]; 4];
+            for i in 0..n {
+                for j in 0..n {
+                    near_diagonal[i][j] = if i == j { 1.0 + i as f64 } else { 1e-9 };
+                }
+            }
+            for (x, y) in [(m, near_diagonal), (near_diagonal, m), (m, m)] {
+                let pair = sym_eigenvalues_pair(&x, &y, n);
+                let single = [sym_eigenvalues(&x, n), sym_eigenvalues(&y, n)];
+                assert_eq!(
+                    pair.map(|v| v.map(f64::to_bits)),
+                    single.map(|v| v.map(f64::to_bits))
+                );
+            }
             for k in 0..n {
                 assert!(
                     (eigen.values[k] - sorted[k]).abs() <= 1e-13 * 40.0,
