@@ -1,8 +1,9 @@
 //! Project automation. `cargo xtask fixtures` writes `fixtures/`; `cargo xtask report` measures
 //! and writes `docs/REPORT.md` with its figures (see `xtask::report`); `cargo xtask stage2`
 //! prints the report's table of Stage 2's two paths alone; `cargo xtask world` prints the table
-//! of many-object worlds (see `xtask::world_scene`); `cargo xtask soak N` runs the random
-//! near-contact soak (see `xtask::soak`).
+//! of many-object worlds (see `xtask::world_scene`); `cargo xtask coherence` prints the table of
+//! coherent against cold frames (see `xtask::report::coherence_table`); `cargo xtask soak N`
+//! runs the random near-contact soak (see `xtask::soak`).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -15,6 +16,7 @@ const USAGE: &str = "usage: cargo xtask fixtures\n       \
 cargo xtask report [--quick] [--out DIR]\n       \
 cargo xtask stage2 [REPETITIONS]\n       \
 cargo xtask world [STEPS]\n       \
+cargo xtask coherence [PASSES]\n       \
 cargo xtask soak N [--seed S] [--pairs a-b,c-d,...] [--general]\n       \
 cargo xtask soak --replay a-b:SEED";
 
@@ -150,6 +152,18 @@ fn world(args: &[String]) -> Result<(), String> {
     Ok(())
 }
 
+/// Prints the table of coherent against cold frames on the paper scenes (markdown; see
+/// `xtask::report::coherence_table`).
+fn coherence(args: &[String]) -> Result<(), String> {
+    let passes = match args.first() {
+        Some(n) => n.parse().map_err(|e| format!("bad passes `{n}`: {e}"))?,
+        None => 15,
+    };
+    let table = xtask::report::coherence_table::coherence_table(&workspace_root(), passes)?;
+    print!("{table}");
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
@@ -158,6 +172,7 @@ fn main() -> ExitCode {
         Some("soak") => soak(&args[1..]),
         Some("stage2") => stage2(&args[1..]).map(|()| true),
         Some("world") => world(&args[1..]).map(|()| true),
+        Some("coherence") => coherence(&args[1..]).map(|()| true),
         _ => Err(USAGE.to_string()),
     };
     match result {

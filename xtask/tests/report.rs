@@ -27,6 +27,7 @@ fn quick_report_writes_every_section_and_figure() {
         "### Stage 2: proxy regions against normal cones",
         "## 4. Pictures",
         "## 5. Many-object worlds",
+        "## 6. Frame-to-frame coherence",
     ] {
         assert!(text.contains(heading), "missing section {heading:?}");
     }

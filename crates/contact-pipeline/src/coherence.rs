@@ -31,7 +31,8 @@
 //! 2. a minimum above `delta2 + s` at P0 stays above `delta2` at P1 and is not missed; by
 //!    the same bound a tracked minimum last refined at P' with value v is not refined again
 //!    while v − moved(P', P1) > delta2 (it cannot be in the band yet);
-//! 3. each tracked minimum is followed by Newton from its last feature locations, which the
+//! 3. each tracked minimum is followed by Newton from its last feature locations (or, while B
+//!    moves at a steady pace, from their linear extrapolation, see [`warm_start`]), which the
 //!    cache checks: every refinement must converge ([`RefineStatus::Converged`]) to an isolated
 //!    local minimum (point error below [`ISOLATED_POINT_ERROR`]) at or above delta1, and no two
 //!    tracked minima may reach the same point pair (a minimum that vanished or was jumped
@@ -61,7 +62,9 @@ use crate::pipeline::{
 use crate::report::{PairReport, PairState};
 use bvh_hybrid::BroadPhase;
 use exact_refine::{RefineStatus, RefinedContact, Refiner};
-use geom_param::{ComponentId, DPose3, FeatureId, FeatureLocation, ObjectModel, Seed, SeedPoint};
+use geom_param::{
+    ComponentId, DPose3, FeatureId, FeatureLocation, ObjectModel, ParamRange, Seed, SeedPoint,
+};
 use glam::DVec3;
 use mesh_narrowphase::MeshPhase;
 use std::time::Instant;
@@ -133,14 +136,29 @@ struct Tracked {
     distance: f64,
     at: DPose3,
     id: Option<ContactId>,
+    /// The refinement before the last one, when the last one was a warm frame's.
+    before: Option<Before>,
+}
+
+/// A tracked minimum's feature locations and B's pose at the refinement before its last one:
+/// with the last one, a velocity of the minimum's parameters and of the pose.
+#[derive(Clone, Copy, Debug)]
+struct Before {
+    a: FeatureLocation,
+    b: FeatureLocation,
+    at: DPose3,
 }
 
 impl Tracked {
+    /// The minimum `m` refined with B posed by `pose_ab` in A's frame, `inverse_ab` being
+    /// `pose_ab.inverse()`.
+    #[allow(clippy::too_many_arguments)]
     fn new(
         m: &RefinedContact,
         ca: ComponentId,
         cb: ComponentId,
         pose_ab: &DPose3,
+        inverse_ab: &DPose3,
         model_a: &ObjectModel,
         model_b: &ObjectModel,
         id: Option<ContactId>,
@@ -148,20 +166,22 @@ impl Tracked {
         Self {
             seed: seed_from(m, ca, cb, model_a, model_b),
             local_a: m.point_a,
-            local_b: pose_ab.inverse() * m.point_b,
+            local_b: *inverse_ab * m.point_b,
             distance: m.distance,
             at: *pose_ab,
             id,
+            before: None,
         }
     }
 }
 
-/// The last frame's contact, for matching ids after a full query: points in their own object's
-/// frames and features.
+/// The last frame's contact, for matching ids after a full query: points in the world frame
+/// (each taken to its own object's frame with [`PairCache::last_poses`] when a full query
+/// needs them, so a warm frame does not transform them) and features.
 #[derive(Clone, Copy, Debug)]
 struct LastContact {
-    local_a: DVec3,
-    local_b: DVec3,
+    point_a: DVec3,
+    point_b: DVec3,
     features: (FeatureId, FeatureId),
     id: ContactId,
 }
@@ -182,6 +202,8 @@ pub struct PairCache {
     warm_frames: u32,
     tracked: Vec<Tracked>,
     last: Vec<LastContact>,
+    /// A's and B's world poses (normalised) of the frame of `last`.
+    last_poses: (DPose3, DPose3),
     ids: Vec<ContactId>,
     next_id: u64,
     kind: Option<FrameKind>,
@@ -296,7 +318,6 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             FrameKind::Full
         };
         cache.kind = Some(kind);
-        let (inv_a, inv_b) = (checked_a.inverse(), checked_b.inverse());
         last.clear();
         last.extend(
             report
@@ -304,13 +325,14 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 .iter()
                 .zip(&cache.ids)
                 .map(|(c, &id)| LastContact {
-                    local_a: inv_a * c.point_a,
-                    local_b: inv_b * c.point_b,
+                    point_a: c.point_a,
+                    point_b: c.point_b,
                     features: (c.location_a.feature(), c.location_b.feature()),
                     id,
                 }),
         );
         cache.last = last;
+        cache.last_poses = (checked_a, checked_b);
         Ok(kind)
     }
 
@@ -343,11 +365,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             && report.state != PairState::Penetration
             && record.minima.iter().all(|(m, _, _)| isolated(m));
         if trackable {
-            cache.tracked.extend(
-                record.minima.iter().map(|(m, ca, cb)| {
-                    Tracked::new(m, *ca, *cb, pose_ab, &a.model, &b.model, None)
-                }),
-            );
+            let inverse_ab = pose_ab.inverse();
+            cache
+                .tracked
+                .extend(record.minima.iter().map(|(m, ca, cb)| {
+                    Tracked::new(m, *ca, *cb, pose_ab, &inverse_ab, &a.model, &b.model, None)
+                }));
             cache.reference = Some(*pose_ab);
             cache.slack = slack;
             cache.ball_b = (b.bounding_centre, b.bounding_radius);
@@ -376,25 +399,61 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let scale = a.model.scale.max(b.model.scale);
         cache.ids.clear();
         let ball = cache.ball_b;
+        let inverse_ab = pose_ab.inverse();
+        // The motion bound since the pose a minimum was last refined at: minima refined in the
+        // same frame share it, so the last one is kept.
+        let mut last_bound: Option<(DPose3, f64)> = None;
+        // Whether B's motion is steady since the two poses a minimum was last refined at (the
+        // same for minima refined in the same frames, so the last answer is kept).
+        let mut last_steady: Option<(DPose3, DPose3, bool)> = None;
         // Pass 1: refine the minima that may be in the band now (a minimum's value changes by
         // at most the motion since it was refined) and check that each was followed.
         let mut refined_now = std::mem::take(&mut cache.refined_now);
         refined_now.clear();
         for (k, t) in cache.tracked.iter().enumerate() {
-            let moved = motion_bound(&t.at, pose_ab, ball);
+            let moved = match last_bound {
+                Some((at, moved)) if same_pose(&at, &t.at) => moved,
+                _ => {
+                    let moved = motion_bound(&t.at, pose_ab, ball);
+                    last_bound = Some((t.at, moved));
+                    moved
+                }
+            };
             if t.distance - moved > options.delta2 {
                 continue;
             }
+            let seed = match t.before {
+                Some(before) => {
+                    let steady = match last_steady {
+                        Some((at0, at1, steady))
+                            if same_pose(&at0, &before.at) && same_pose(&at1, &t.at) =>
+                        {
+                            steady
+                        }
+                        _ => {
+                            let steady = steady_motion(&before.at, &t.at, pose_ab, ball, moved);
+                            last_steady = Some((before.at, t.at, steady));
+                            steady
+                        }
+                    };
+                    if steady {
+                        warm_start(t, &before, &a.model, &b.model)
+                    } else {
+                        t.seed
+                    }
+                }
+                None => t.seed,
+            };
             let refined = self.refiner.refine(
                 &a.model.solid,
                 &b.model.solid,
                 pose_ab,
-                &t.seed,
+                &seed,
                 scratch.refine_scratch(),
             );
             report.stats.refined += 1;
             let travel = WARM_POINT_TRAVEL * moved + ISOLATED_POINT_ERROR;
-            let local_b = pose_ab.inverse() * refined.point_b;
+            let local_b = inverse_ab * refined.point_b;
             let followed = isolated(&refined)
                 && refined.diagnostics.iterations <= WARM_MAX_ITERATIONS
                 && refined.point_a.distance(t.local_a) <= travel
@@ -416,15 +475,22 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         // Pass 2: update them and report those in the band, in tracking order.
         for (k, refined) in &refined_now {
             let t = &mut cache.tracked[*k];
+            let before = Before {
+                a: t.seed.a.location,
+                b: t.seed.b.location,
+                at: t.at,
+            };
             *t = Tracked::new(
                 refined,
                 t.seed.a.component,
                 t.seed.b.component,
                 pose_ab,
+                &inverse_ab,
                 &a.model,
                 &b.model,
                 t.id,
             );
+            t.before = Some(before);
             if refined.distance <= options.delta2 {
                 let tolerance = merge_tolerance(refined, scale);
                 // Distinct points (checked above): never merged.
@@ -458,6 +524,97 @@ fn isolated(m: &RefinedContact) -> bool {
     m.diagnostics.status == RefineStatus::Converged
         && m.diagnostics.is_local_minimum
         && m.diagnostics.point_error_estimate <= ISOLATED_POINT_ERROR
+}
+
+/// Whether B moves at a steady pace: the pose one more step of the motion from `at0` (the pose
+/// of the refinement before the last) to `at1` (the last) would reach is nearer to `pose_ab`,
+/// in the motion bound, than `at1` itself is (`moved`).
+fn steady_motion(
+    at0: &DPose3,
+    at1: &DPose3,
+    pose_ab: &DPose3,
+    ball: (DVec3, f64),
+    moved: f64,
+) -> bool {
+    let step = *at1 * at0.inverse();
+    motion_bound(&(step * *at1), pose_ab, ball) < moved
+}
+
+/// The start of a tracked minimum's refinement while B moves at a steady pace: each side's
+/// parameters moved on by their last change (x1 + (x1 − x0), a periodic change taken the
+/// short way round), the predictor of a constant-velocity path; a side on another feature than
+/// before, on a vertex, or whose prediction leaves its feature's parameter range starts where
+/// it was. Only the start moves: the answer is Newton's from there, checked like any other
+/// (module documentation, point 3), and a minimum followed over a small motion converges in
+/// one step fewer from a start that is off by the change of its velocity rather than by its
+/// velocity.
+fn warm_start(t: &Tracked, before: &Before, model_a: &ObjectModel, model_b: &ObjectModel) -> Seed {
+    let mut seed = t.seed;
+    seed.a.location = extrapolated(before.a, t.seed.a.location, model_a);
+    seed.b.location = extrapolated(before.b, t.seed.b.location, model_b);
+    seed
+}
+
+/// `now` moved on by its change since `previous` (see [`warm_start`]), or `now`.
+fn extrapolated(
+    previous: FeatureLocation,
+    now: FeatureLocation,
+    model: &ObjectModel,
+) -> FeatureLocation {
+    let on = |range: ParamRange, x0: f64, x1: f64| {
+        let mut change = x1 - x0;
+        if range.periodic {
+            let period = range.max - range.min;
+            change -= period * (change / period).round();
+        }
+        let x = x1 + change;
+        (x.is_finite() && (range.periodic || (x > range.min && x < range.max))).then_some(x)
+    };
+    let solid = &model.solid;
+    let moved = match (previous, now) {
+        (
+            FeatureLocation::Face {
+                id: f0,
+                u: u0,
+                v: v0,
+            },
+            FeatureLocation::Face { id, u, v },
+        ) if f0 == id => solid.faces.get(id.0 as usize).and_then(|face| {
+            let [du, dv] = face.surface.domain();
+            Some(FeatureLocation::Face {
+                id,
+                u: on(du, u0, u)?,
+                v: on(dv, v0, v)?,
+            })
+        }),
+        (FeatureLocation::Edge { id: e0, t: t0 }, FeatureLocation::Edge { id, t }) if e0 == id => {
+            solid.edges.get(id.0 as usize).and_then(|edge| {
+                Some(FeatureLocation::Edge {
+                    id,
+                    t: on(edge.curve.domain(), t0, t)?,
+                })
+            })
+        }
+        _ => None,
+    };
+    moved.unwrap_or(now)
+}
+
+/// Whether two poses are the same bits (so that a function of one is the same for the other).
+fn same_pose(p: &DPose3, q: &DPose3) -> bool {
+    let bits = |p: &DPose3| {
+        [
+            p.translation.x,
+            p.translation.y,
+            p.translation.z,
+            p.rotation.x,
+            p.rotation.y,
+            p.rotation.z,
+            p.rotation.w,
+        ]
+        .map(f64::to_bits)
+    };
+    bits(p) == bits(q)
 }
 
 /// The path length bound of the module documentation: |P1 c − P0 c| + ω r (mm) for the ball
@@ -514,12 +671,14 @@ fn assign_full_ids(
     coherence: &CoherenceOptions,
 ) {
     let (inv_a, inv_b) = (pose_a.inverse(), pose_b.inverse());
+    let (old_inv_a, old_inv_b) = (cache.last_poses.0.inverse(), cache.last_poses.1.inverse());
     let mut candidates: Vec<(bool, f64, usize, usize)> = Vec::new();
     for (i, c) in report.contacts.iter().enumerate() {
         let (la, lb) = (inv_a * c.point_a, inv_b * c.point_b);
         let features = (c.location_a.feature(), c.location_b.feature());
         for (j, o) in old.iter().enumerate() {
-            let d = la.distance(o.local_a).max(lb.distance(o.local_b));
+            let (old_a, old_b) = (old_inv_a * o.point_a, old_inv_b * o.point_b);
+            let d = la.distance(old_a).max(lb.distance(old_b));
             if d <= coherence.id_match_distance {
                 candidates.push((o.features != features, d, i, j));
             }
@@ -563,8 +722,66 @@ fn assign_full_ids(
 
 #[cfg(test)]
 mod tests {
-    use super::motion_bound;
-    use geom_param::{DPose3, DQuat, DVec3};
+    use super::{extrapolated, motion_bound, steady_motion};
+    use crate::{ContactOptions, ContactPipeline};
+    use geom_param::{DPose3, DQuat, DVec3, FaceId, FeatureLocation, ObjectDescription, VertexId};
+
+    /// A ball of radius 10 mm: one face of revolution, u the angle about z (periodic, [0, 2π)),
+    /// v in [0, 1] from pole to pole.
+    fn ball() -> geom_param::ObjectModel {
+        let pipeline = ContactPipeline::new(ContactOptions::default()).expect("options");
+        let ball = ObjectDescription::from_json(
+            r#"{"name": "ball", "profile": [{"arc": {"center": [0, 0], "from": [0, -10], "to": [0, 10], "ccw": true}}]}"#,
+        )
+        .expect("description");
+        pipeline.prepare_description(&ball).expect("prepares").model
+    }
+
+    /// The prediction moves each parameter on by its last change (a periodic one the short way
+    /// across 2π), and keeps a location whose prediction would leave its range, changes
+    /// feature, or has no parameters.
+    #[test]
+    fn extrapolation_moves_parameters_on_by_their_last_change() {
+        let model = ball();
+        let face = |u, v| FeatureLocation::Face {
+            id: FaceId(0),
+            u,
+            v,
+        };
+        let two_pi = std::f64::consts::TAU;
+        // u went from 6.2 across 2π to 0.05: a change of 0.05 + 2π − 6.2.
+        let FeatureLocation::Face { u, v, .. } =
+            extrapolated(face(6.2, 0.5), face(0.05, 0.52), &model)
+        else {
+            panic!("a face stays a face");
+        };
+        assert!((u - (0.05 + (0.05 + two_pi - 6.2))).abs() < 1e-12, "u {u}");
+        assert!((v - 0.54).abs() < 1e-12, "v {v}");
+        // v would reach 1.03, beyond the pole: the start stays where it is.
+        assert_eq!(
+            extrapolated(face(1.0, 0.95), face(1.0, 0.99), &model),
+            face(1.0, 0.99)
+        );
+        let vertex = FeatureLocation::Vertex { id: VertexId(0) };
+        assert_eq!(extrapolated(vertex, face(1.0, 0.5), &model), face(1.0, 0.5));
+        assert_eq!(extrapolated(face(1.0, 0.5), vertex, &model), vertex);
+    }
+
+    /// Equal steps of a turn are steady; a step that undoes the last one (a reversal) and a
+    /// pause are not.
+    #[test]
+    fn steady_motion_is_a_repeated_step() {
+        let ball = (DVec3::new(0.0, 0.0, 5.0), 10.0);
+        let turn = |angle: f64| {
+            DPose3::from_parts(DVec3::new(20.0, 0.0, 0.0), DQuat::from_rotation_x(angle))
+        };
+        let (p0, p1) = (turn(0.0), turn(1e-3));
+        let moved = |p: &DPose3| motion_bound(&p1, p, ball);
+        let p2 = turn(2e-3);
+        assert!(steady_motion(&p0, &p1, &p2, ball, moved(&p2)));
+        assert!(!steady_motion(&p0, &p1, &p0, ball, moved(&p0)));
+        assert!(!steady_motion(&p0, &p1, &p1, ball, moved(&p1)));
+    }
 
     /// The bound covers the straight displacement of every point of the ball (sampled densely
     /// on its sphere, where the largest displacement lies), and equals the closed forms of a

@@ -5,10 +5,32 @@
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 
+/// Calls `f::<N>(args)` for the size `n` (0 to 4; larger is taken as 4): one copy per size,
+/// whose loops over a constant bound the compiler unrolls. The arithmetic is the same for all.
+macro_rules! by_size {
+    ($n:expr, $f:ident($($arg:expr),*)) => {
+        match $n {
+            0 => $f::<0>($($arg),*),
+            1 => $f::<1>($($arg),*),
+            2 => $f::<2>($($arg),*),
+            3 => $f::<3>($($arg),*),
+            _ => $f::<4>($($arg),*),
+        }
+    };
+}
+
+pub(crate) use by_size;
+
 /// The lower Cholesky factor L (H = L Lᵀ) of the leading `n` x `n` block of a symmetric
 /// matrix, or `None` when a pivot is not positive (or not finite): the matrix is then not
 /// positive definite to rounding.
 pub(crate) fn cholesky(h: &[[f64; 4]; 4], n: usize) -> Option<[[f64; 4]; 4]> {
+    by_size!(n, cholesky_n(h))
+}
+
+/// [`cholesky`] of the leading `N` x `N` block.
+pub(crate) fn cholesky_n<const N: usize>(h: &[[f64; 4]; 4]) -> Option<[[f64; 4]; 4]> {
+    let n = N;
     let mut l = [[0.0; 4]; 4];
     for j in 0..n {
         let mut pivot = h[j][j];
@@ -34,6 +56,12 @@ pub(crate) fn cholesky(h: &[[f64; 4]; 4], n: usize) -> Option<[[f64; 4]; 4]> {
 
 /// Solves L Lᵀ x = b for the first `n` entries.
 pub(crate) fn cholesky_solve(l: &[[f64; 4]; 4], n: usize, b: &[f64; 4]) -> [f64; 4] {
+    by_size!(n, cholesky_solve_n(l, b))
+}
+
+/// [`cholesky_solve`] for the leading `N` entries.
+pub(crate) fn cholesky_solve_n<const N: usize>(l: &[[f64; 4]; 4], b: &[f64; 4]) -> [f64; 4] {
+    let n = N;
     let mut x = [0.0; 4];
     for i in 0..n {
         let mut v = b[i];
@@ -52,10 +80,11 @@ pub(crate) fn cholesky_solve(l: &[[f64; 4]; 4], n: usize, b: &[f64; 4]) -> [f64;
     x
 }
 
-/// A lower bound on the smallest eigenvalue of L Lᵀ: 1 / ‖L⁻¹‖_F², since
-/// 1 / λ_min = ‖L⁻¹‖₂² and the Frobenius norm bounds the spectral norm from above. Zero (no bound)
-/// when not finite.
-pub(crate) fn smallest_eigenvalue_bound(l: &[[f64; 4]; 4], n: usize) -> f64 {
+/// A lower bound on the smallest eigenvalue of L Lᵀ (the leading `N` x `N` block):
+/// 1 / ‖L⁻¹‖_F², since 1 / λ_min = ‖L⁻¹‖₂² and the Frobenius norm bounds the spectral norm from
+/// above. Zero (no bound) when not finite.
+pub(crate) fn smallest_eigenvalue_bound<const N: usize>(l: &[[f64; 4]; 4]) -> f64 {
+    let n = N;
     // Column j of L⁻¹ by forward substitution (zero above the diagonal).
     let mut norm2 = 0.0;
     for j in 0..n {

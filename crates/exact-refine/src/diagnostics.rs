@@ -5,9 +5,9 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::feature_eval::Body;
-use crate::newton::{EPS, Outcome, Solution, State, is_touch};
+use crate::newton::{EPS, Outcome, Solution, State, by_pair_kind, is_touch};
 use crate::refiner::{RefineDiagnostics, RefineStatus};
-use crate::sym_eigen::sym_eigen;
+use crate::sym_eigen::sym_eigenvalues_pair;
 use geom_param::DVec3;
 
 /// Diagnostics of `solution` (a pair solve between `a` and `b`) whose unit normal from A to B
@@ -20,9 +20,11 @@ pub(crate) fn diagnose(
 ) -> RefineDiagnostics {
     let state = &solution.state;
     let n = state.n;
-    let eigen = sym_eigen(&state.hs, n);
-    let values = &eigen.values[..n];
-    let floor = state.eigen_floor(&eigen);
+    // Both spectra at once (independent chains of divisions and roots).
+    let gap = GapHessian::new(state, normal);
+    let [spectrum, gap_spectrum] = sym_eigenvalues_pair(&state.hs, &gap.h, n);
+    let values = &spectrum[..n];
+    let floor = state.eigen_floor(&spectrum);
     let largest = values.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
     let smallest = values.iter().fold(f64::INFINITY, |m, l| m.min(l.abs()));
     let condition = match n {
@@ -42,7 +44,7 @@ pub(crate) fn diagnose(
         0 => values.first().is_none_or(|&l| l >= -floor),
         k => values[k - 1] <= floor && values.get(k).is_none_or(|&l| l >= -floor),
     };
-    let (kappa, degenerate) = relative_curvature(state, normal);
+    let (kappa, degenerate) = gap.relative_curvature(&gap_spectrum, n);
     let status = match solution.outcome {
         Outcome::Converged if degenerate => RefineStatus::ContinuousContact,
         Outcome::Converged => RefineStatus::Converged,
@@ -135,49 +137,77 @@ pub(crate) fn gap_within_error(
     gap <= error_estimate + slope * point_error_estimate
 }
 
-/// The smallest curvature of the gap function (1/mm) over the directions of the pair's
-/// parameters, and whether it is zero to rounding (a continuous contact).
-///
-/// With the features a distance ℓ apart along `normal`, the Hessian of f has a Schur complement
-/// of about ℓ(K_a + K_b) − ℓ²K_a² in the rolling directions, so its smallest eigenvalue over ℓ
-/// is the curvature of the gap. ℓ is the actual gap |σ| (which makes concentric spheres of
-/// different radii exactly degenerate), floored at √ε / (curvature scale) at touch, where the rounding of the eigenvalue
-/// (256 ε (1 + ℓ·curvature)) then resolves relative curvatures down to about 4e-6 of the
-/// curvature scale. Zero for
-/// parallel cylinders, flat faces and concentric spheres.
-fn relative_curvature(state: &State, normal: DVec3) -> (f64, bool) {
-    let (n, na) = (state.n, state.na);
-    if n == 0 {
-        return (f64::INFINITY, false);
+/// The Hessian whose spectrum gives the relative curvature of the gap (see
+/// [`GapHessian::relative_curvature`]), with the gap ℓ and curvature scale it was built with.
+struct GapHessian {
+    h: [[f64; 4]; 4],
+    ell: f64,
+    curvature: f64,
+}
+
+impl GapHessian {
+    /// With the features a distance ℓ apart along `normal`, the Hessian of f has a Schur
+    /// complement of about ℓ(K_a + K_b) − ℓ²K_a² in the rolling directions, so its smallest
+    /// eigenvalue over ℓ is the curvature of the gap. ℓ is the actual gap |σ| (which makes
+    /// concentric spheres of different radii exactly degenerate), floored at √ε / (curvature
+    /// scale) at touch, where the rounding of the eigenvalue (256 ε (1 + ℓ·curvature)) then
+    /// resolves relative curvatures down to about 4e-6 of the curvature scale. (No variables:
+    /// an empty matrix.)
+    fn new(state: &State, normal: DVec3) -> Self {
+        let (n, na) = (state.n, state.na);
+        let curvature = state.curvature.max(1.0 / state.scale);
+        let ell = state.d.length().max(EPS.sqrt() / curvature);
+        let h = if n == 0 {
+            [[0.0; 4]; 4]
+        } else {
+            by_pair_kind!(na, n - na, gap_hessian(state, -normal * ell))
+        };
+        Self { h, ell, curvature }
     }
-    let curvature = state.curvature.max(1.0 / state.scale);
-    let ell = state.d.length().max(EPS.sqrt() / curvature);
-    let d = -normal * ell;
+
+    /// The smallest curvature of the gap function (1/mm) over the directions of the pair's
+    /// parameters, from the eigenvalues `spectrum` of the first `n` rows and columns of `h`,
+    /// and whether it is zero to rounding (a continuous contact). Zero for parallel cylinders,
+    /// flat faces and concentric spheres.
+    fn relative_curvature(&self, spectrum: &[f64; 4], n: usize) -> (f64, bool) {
+        if n == 0 {
+            return (f64::INFINITY, false);
+        }
+        let smallest = spectrum[..n]
+            .iter()
+            .fold(f64::INFINITY, |m, l| m.min(l.abs()));
+        let rounding = 256.0 * EPS * (1.0 + self.ell * self.curvature);
+        (smallest / self.ell, smallest <= rounding)
+    }
+}
+
+/// The scaled Hessian of f at `state` with the connecting vector replaced by `d` (A's frame,
+/// mm), for `NA` parameters on A and `NB` on B: H_ij = (s_i s_j ∂P/∂x_i · ∂P/∂x_j + s_i d ·
+/// ∂²P/∂x_i∂x_j) / (speed_i speed_j), s = +1 on A and −1 on B, the second term only within one
+/// side. Symmetric term by term, so the upper triangle is mirrored.
+fn gap_hessian<const NA: usize, const NB: usize>(state: &State, d: DVec3) -> [[f64; 4]; 4] {
+    let n = NA + NB;
     let mut first = [DVec3::ZERO; 4];
-    first[..na].copy_from_slice(&state.ea.d[..na]);
-    first[na..n].copy_from_slice(&state.eb.d[..n - na]);
+    first[..NA].copy_from_slice(&state.ea.d[..NA]);
+    first[NA..n].copy_from_slice(&state.eb.d[..NB]);
     let mut h = [[0.0; 4]; 4];
     for i in 0..n {
-        for j in 0..n {
+        for j in i..n {
             let (si, sj) = (
-                if i < na { 1.0 } else { -1.0 },
-                if j < na { 1.0 } else { -1.0 },
+                if i < NA { 1.0 } else { -1.0 },
+                if j < NA { 1.0 } else { -1.0 },
             );
-            let second = match (i < na, j < na) {
+            let second = match (i < NA, j < NA) {
                 (true, true) => d.dot(state.ea.dd[i][j]),
-                (false, false) => -d.dot(state.eb.dd[i - na][j - na]),
+                (false, false) => -d.dot(state.eb.dd[i - NA][j - NA]),
                 _ => 0.0,
             };
             h[i][j] =
                 (si * sj * first[i].dot(first[j]) + second) / (state.speed[i] * state.speed[j]);
+            h[j][i] = h[i][j];
         }
     }
-    let eigen = sym_eigen(&h, n);
-    let smallest = eigen.values[..n]
-        .iter()
-        .fold(f64::INFINITY, |m, l| m.min(l.abs()));
-    let rounding = 256.0 * EPS * (1.0 + ell * curvature);
-    (smallest / ell, smallest <= rounding)
+    h
 }
 
 /// The gap function's smallest curvature (1/mm, [`RefineDiagnostics::gap_curvature`]): the

@@ -1,7 +1,9 @@
 //! Uniform evaluation of a feature (face, edge, vertex, or a fixed point) in A's frame: the
 //! point, its first and second derivatives for 0, 1 or 2 parameters, and an outward direction.
 
-use geom_param::{Boundary, DPose3, DVec3, FeatureLocation, ParamRange, ParamSide, Solid};
+use geom_param::{
+    Boundary, DPose3, DVec3, FeatureLocation, ParamRange, ParamSide, Solid, SurfacePoint,
+};
 use glam::DMat3;
 
 /// What one side of the problem is: a feature of a posed solid, or a fixed point (the target
@@ -141,6 +143,23 @@ impl Body<'_> {
         }
     }
 
+    /// [`Self::eval`], taking a face's surface evaluation from `known` when it is of the same
+    /// face at the same (wrapped) parameters, bit for bit: the same answer without evaluating
+    /// the surface again.
+    ///
+    /// Comparing the location's own parameters suffices: [`wrap`] keeps a wrapped parameter
+    /// as it is, so equal bits give the surface evaluation [`Self::eval`] would take.
+    pub fn eval_reusing(&self, loc: &Loc, known: Option<&LocalFacePoint>) -> FeatureEval {
+        if let (Self::Solid { frame, .. }, Some(FeatureLocation::Face { id, u, v }), Some(k)) =
+            (self, loc, known)
+        {
+            if k.face == *id && [u.to_bits(), v.to_bits()] == k.uv.map(f64::to_bits) {
+                return face_eval(frame, &k.at);
+            }
+        }
+        self.eval(loc)
+    }
+
     /// Point and derivatives at `loc`, in A's frame.
     pub fn eval(&self, loc: &Loc) -> FeatureEval {
         match (self, loc) {
@@ -154,13 +173,7 @@ impl Body<'_> {
                     FeatureLocation::Face { id, u, v } => {
                         let surface = &solid.face(id).surface;
                         let [du, dv] = surface.domain();
-                        let s = surface.eval(wrap(&du, u), wrap(&dv, v));
-                        FeatureEval {
-                            point: frame.point(s.point),
-                            n: 2,
-                            d: [r(s.du), r(s.dv)],
-                            dd: [[r(s.duu), r(s.duv)], [r(s.duv), r(s.dvv)]],
-                        }
+                        face_eval(frame, &surface.eval(wrap(&du, u), wrap(&dv, v)))
                     }
                     FeatureLocation::Edge { id, t } => {
                         let curve = &solid.edge(id).curve;
@@ -262,6 +275,28 @@ impl Body<'_> {
             }
         };
         local.map(|n| frame.vector(n))
+    }
+}
+
+/// A face's surface evaluated in its solid's own frame at wrapped parameters `uv`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LocalFacePoint {
+    /// The face.
+    pub face: geom_param::FaceId,
+    /// The (wrapped) parameters the surface was evaluated at.
+    pub uv: [f64; 2],
+    /// The evaluation, in the solid's frame.
+    pub at: SurfacePoint,
+}
+
+/// A face's evaluation `s` (its solid's frame) moved into A's frame by `frame`.
+fn face_eval(frame: &Frame, s: &SurfacePoint) -> FeatureEval {
+    let r = |v: DVec3| frame.vector(v);
+    FeatureEval {
+        point: frame.point(s.point),
+        n: 2,
+        d: [r(s.du), r(s.dv)],
+        dd: [[r(s.duu), r(s.duv)], [r(s.duv), r(s.dvv)]],
     }
 }
 

@@ -2,7 +2,9 @@
 //! onto the bounding edge or vertex when a face parameter reaches its side, and back into an
 //! adjacent face when the objective decreases into it.
 
-use crate::feature_eval::{Body, Loc, inward_tangent, side_of, side_params, vertex_sides, wrap};
+use crate::feature_eval::{
+    Body, Loc, LocalFacePoint, inward_tangent, side_of, side_params, vertex_sides, wrap,
+};
 use geom_param::{Boundary, DVec2, DVec3, EdgeUse, FeatureLocation, SurfacePoint};
 
 /// Samples of the running parameter tried when leaving a vertex into a face: the best one is
@@ -118,8 +120,16 @@ fn settle_trimmed(
 /// face (v = 1 − 6e-16 at the goblet's rim); started there, the pair solve treats the edge's
 /// point as an interior face point, and the face-face penetration solve that follows has no
 /// witness to converge to (the witness is on the edge) and wanders off.
-pub(crate) fn settle_start(body: &Body, loc: Loc) -> Loc {
-    snap_to_sides(body, loc, 16.0 * f64::EPSILON)
+///
+/// `known` receives the face's evaluation at the start, for the solve's first state
+/// ([`Body::eval_reusing`]).
+pub(crate) fn settle_start(body: &Body, loc: Loc, known: &mut Option<LocalFacePoint>) -> Loc {
+    snap_within(
+        body,
+        loc,
+        |at| 16.0 * f64::EPSILON * at.point.length().max(1.0),
+        known,
+    )
 }
 
 /// [`settle`] after putting each non-periodic face parameter whose point lies within
@@ -127,17 +137,29 @@ pub(crate) fn settle_start(body: &Body, loc: Loc) -> Loc {
 /// side; on a trimmed face, the point onto the nearest boundary edge when that edge's point is
 /// within the same distance.
 pub(crate) fn snap_to_sides(body: &Body, loc: Loc, relative: f64) -> Loc {
-    snap_within(body, loc, |at| relative * at.point.length().max(1.0))
+    snap_within(
+        body,
+        loc,
+        |at| relative * at.point.length().max(1.0),
+        &mut None,
+    )
 }
 
 /// [`settle`] after putting each non-periodic face parameter whose point lies within `reach`
 /// mm (along the face, to first order) of its side onto that side.
 pub(crate) fn snap_within_distance(body: &Body, loc: Loc, reach: f64) -> Loc {
-    snap_within(body, loc, |_| reach)
+    snap_within(body, loc, |_| reach, &mut None)
 }
 
-/// The snap of [`snap_to_sides`] with the reach (mm) a function of the face's point.
-fn snap_within(body: &Body, loc: Loc, reach: impl Fn(&SurfacePoint) -> f64) -> Loc {
+/// The snap of [`snap_to_sides`] with the reach (mm) a function of the face's point; `known`
+/// receives the face's evaluation it took (at the wrapped start parameters), which is the first
+/// evaluation of the result when that is the same face point ([`Body::eval_reusing`] checks).
+fn snap_within(
+    body: &Body,
+    loc: Loc,
+    reach: impl Fn(&SurfacePoint) -> f64,
+    known: &mut Option<LocalFacePoint>,
+) -> Loc {
     let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, loc) else {
         return settle(body, loc);
     };
@@ -145,21 +167,24 @@ fn snap_within(body: &Body, loc: Loc, reach: impl Fn(&SurfacePoint) -> f64) -> L
     let surface = &face.surface;
     let domain = surface.domain();
     let mut w = [wrap(&domain[0], u), wrap(&domain[1], v)];
-    let at = surface.eval(w[0], w[1]);
-    let reach = reach(&at);
+    let known = known.insert(LocalFacePoint {
+        face: id,
+        uv: w,
+        at: surface.eval(w[0], w[1]),
+    });
+    let at = &known.at;
+    let reach = reach(at);
     if let Some(trim) = &face.trim {
         // A trimmed face's sides are its trim's edges: the nearest boundary point, if its
         // point is within reach of the face's.
         if let Some(near) = trim.nearest(DVec2::new(u, v)) {
             let edge = trim.loops[near.loop_index].entries[near.index].edge;
             if solid.eval_edge(edge, near.t).point.distance(at.point) <= reach {
-                return settle(
-                    body,
-                    Some(FeatureLocation::Edge {
-                        id: edge,
-                        t: near.t,
-                    }),
-                );
+                let on_edge = Some(FeatureLocation::Edge {
+                    id: edge,
+                    t: near.t,
+                });
+                return settle(body, on_edge);
             }
         }
         return settle(body, loc);
@@ -175,14 +200,12 @@ fn snap_within(body: &Body, loc: Loc, reach: impl Fn(&SurfacePoint) -> f64) -> L
             }
         }
     }
-    settle(
-        body,
-        Some(FeatureLocation::Face {
-            id,
-            u: w[0],
-            v: w[1],
-        }),
-    )
+    let snapped = Some(FeatureLocation::Face {
+        id,
+        u: w[0],
+        v: w[1],
+    });
+    settle(body, snapped)
 }
 
 /// A face location moved onto the nearest edge bounding its face: the nearest point of a

@@ -16,8 +16,10 @@
 
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
-use crate::dense_solve::{cholesky, cholesky_solve, smallest_eigenvalue_bound};
-use crate::feature_eval::{Body, FeatureEval, Loc, params, with_params};
+use crate::dense_solve::{
+    by_size, cholesky, cholesky_n, cholesky_solve_n, smallest_eigenvalue_bound,
+};
+use crate::feature_eval::{Body, FeatureEval, Loc, LocalFacePoint, params, with_params};
 use crate::feature_switch::{
     into_faces, onto_nearest_edge, reenter, settle, settle_start, snap_to_sides,
     snap_within_distance,
@@ -29,6 +31,26 @@ use crate::penetration::{
 use crate::sym_eigen::{SymEigen, sym_eigen};
 use geom_param::{DVec3, FeatureLocation, ParamRange};
 use std::f64::consts::PI;
+
+/// Calls `f::<NA, NB>(args)` for the pair kind (`na`, `nb`) parameters on A and B (each 0, 1
+/// or 2; larger counts are taken as 2): one monomorphised copy per kind, whose loops over
+/// constant sizes the compiler unrolls.
+macro_rules! by_pair_kind {
+    ($na:expr, $nb:expr, $f:ident($($arg:expr),*)) => {
+        match ($na, $nb) {
+            (0, 0) => $f::<0, 0>($($arg),*),
+            (0, 1) => $f::<0, 1>($($arg),*),
+            (0, _) => $f::<0, 2>($($arg),*),
+            (1, 0) => $f::<1, 0>($($arg),*),
+            (1, 1) => $f::<1, 1>($($arg),*),
+            (1, _) => $f::<1, 2>($($arg),*),
+            (_, 0) => $f::<2, 0>($($arg),*),
+            (_, 1) => $f::<2, 1>($($arg),*),
+            (_, _) => $f::<2, 2>($($arg),*),
+        }
+    };
+}
+pub(crate) use by_pair_kind;
 
 /// Rounding unit.
 pub(crate) const EPS: f64 = f64::EPSILON;
@@ -60,6 +82,9 @@ pub(crate) struct State {
     pub scale: f64,
     /// Largest |∂²P/∂x_i∂x_j| / (speed_i speed_j) (1/mm): curvature scale of the Hessian.
     pub curvature: f64,
+    /// A's and B's outward directions at the points once a penetration test of the solve
+    /// took them ([`Self::penetrating_remembered`]), for the later questions about this state.
+    outward: Option<(Option<DVec3>, Option<DVec3>)>,
 }
 
 impl State {
@@ -74,50 +99,32 @@ impl State {
     }
 
     pub(crate) fn new(a: &Body, b: &Body, la: Loc, lb: Loc, base_scale: f64) -> Self {
-        let (ea, eb) = (a.eval(&la), b.eval(&lb));
+        Self::evaluated(a, b, la, lb, base_scale, [None, None])
+    }
+
+    /// [`Self::new`], taking each face's surface evaluation from `known` (A's, B's) where it
+    /// is of that face point ([`Body::eval_reusing`]).
+    pub(crate) fn evaluated(
+        a: &Body,
+        b: &Body,
+        la: Loc,
+        lb: Loc,
+        base_scale: f64,
+        known: [Option<&LocalFacePoint>; 2],
+    ) -> Self {
+        let (ea, eb) = (a.eval_reusing(&la, known[0]), b.eval_reusing(&lb, known[1]));
         let d = ea.point - eb.point;
         let (na, n) = (ea.n, ea.n + eb.n);
         let scale = base_scale
             .max(ea.point.length())
             .max(eb.point.length())
             .max(f64::MIN_POSITIVE);
-        let mut first = [DVec3::ZERO; 4];
-        first[..na].copy_from_slice(&ea.d[..na]);
-        first[na..n].copy_from_slice(&eb.d[..eb.n]);
-        let max_speed = first[..n].iter().fold(0.0_f64, |m, v| m.max(v.length()));
-        let floor = (1e-12 * max_speed).max(f64::MIN_POSITIVE.sqrt());
-        let mut speed = [1.0; 4];
-        for i in 0..n {
-            speed[i] = first[i].length().max(floor);
-        }
-        let mut gs = [0.0; 4];
-        let mut hs = [[0.0; 4]; 4];
-        // Squared, so that the loop takes no square roots.
-        let mut curvature2 = 0.0_f64;
-        for i in 0..n {
-            let (si, ai) = if i < na { (1.0, true) } else { (-1.0, false) };
-            gs[i] = si * d.dot(first[i]) / speed[i];
-            // The Hessian is symmetric: fill the upper triangle and mirror it.
-            for j in i..n {
-                let sj = if j < na { 1.0 } else { -1.0 };
-                let same_side = (j < na) == ai;
-                let speeds = speed[i] * speed[j];
-                let second = if same_side {
-                    let dd = if ai {
-                        ea.dd[i][j]
-                    } else {
-                        eb.dd[i - na][j - na]
-                    };
-                    curvature2 = curvature2.max(dd.length_squared() / (speeds * speeds));
-                    si * d.dot(dd)
-                } else {
-                    0.0
-                };
-                hs[i][j] = (si * sj * first[i].dot(first[j]) + second) / speeds;
-                hs[j][i] = hs[i][j];
-            }
-        }
-        let curvature = curvature2.sqrt();
+        let Assembled {
+            speed,
+            gs,
+            hs,
+            curvature,
+        } = by_pair_kind!(ea.n, eb.n, assemble(&ea, &eb, d));
         Self {
             la,
             lb,
@@ -131,6 +138,7 @@ impl State {
             hs,
             scale,
             curvature,
+            outward: None,
         }
     }
 
@@ -149,10 +157,8 @@ impl State {
     }
 
     /// Rounding floor of the scaled Hessian's eigenvalues: below it an eigenvalue is zero.
-    pub(crate) fn eigen_floor(&self, eigen: &SymEigen) -> f64 {
-        let largest = eigen.values[..self.n]
-            .iter()
-            .fold(0.0_f64, |m, l| m.max(l.abs()));
+    pub(crate) fn eigen_floor(&self, values: &[f64; 4]) -> f64 {
+        let largest = values[..self.n].iter().fold(0.0_f64, |m, l| m.max(l.abs()));
         64.0 * EPS * (largest + self.scale * self.curvature)
     }
 
@@ -175,14 +181,38 @@ impl State {
         if penetrating { -1.0 } else { 1.0 }
     }
 
-    /// A's outward direction at its point ([`Body::outward_at`]).
+    /// A's outward direction at its point ([`Body::outward_at`]; `a` is the body the state
+    /// was assembled with).
     pub(crate) fn outward_a(&self, a: &Body) -> Option<DVec3> {
-        a.outward_at(&self.la, &self.ea)
+        match self.outward {
+            Some((n, _)) => n,
+            None => a.outward_at(&self.la, &self.ea),
+        }
     }
 
     /// B's outward direction at its point.
     pub(crate) fn outward_b(&self, b: &Body) -> Option<DVec3> {
-        b.outward_at(&self.lb, &self.eb)
+        match self.outward {
+            Some((_, n)) => n,
+            None => b.outward_at(&self.lb, &self.eb),
+        }
+    }
+
+    /// [`Self::penetrating`], keeping the outward directions it takes in the state: a solve
+    /// that ends here asks for them again (diagnostics, signed distance). The same numbers
+    /// either way: both are [`Body::outward_at`] of the state's own locations and evaluations.
+    pub(crate) fn penetrating_remembered(&mut self, a: &Body, b: &Body) -> bool {
+        let takes_outward = self.na > 0
+            && self.na < self.n
+            && self.d.length() > 1e3 * EPS * self.scale
+            && self.outward.is_none();
+        if takes_outward {
+            self.outward = Some((
+                a.outward_at(&self.la, &self.ea),
+                b.outward_at(&self.lb, &self.eb),
+            ));
+        }
+        self.penetrating(a, b)
     }
 
     /// Whether the pair penetrates ([`Self::sign`] negative) with parameters on both sides:
@@ -212,6 +242,73 @@ impl State {
 
     fn merit(&self) -> f64 {
         0.5 * self.d.length_squared()
+    }
+}
+
+/// The variable scaling, scaled gradient and Hessian and curvature scale of a [`State`].
+struct Assembled {
+    speed: [f64; 4],
+    gs: [f64; 4],
+    hs: [[f64; 4]; 4],
+    curvature: f64,
+}
+
+/// [`State`]'s scaled gradient g_i / speed_i and Hessian H_ij / (speed_i speed_j) of
+/// f = ½|d|², d = P_a − P_b, for `NA` parameters on A (`ea`) and `NB` on B (`eb`): with s_i = +1
+/// on A and −1 on B, g_i = s_i d · ∂P/∂x_i and H_ij = s_i s_j ∂P/∂x_i · ∂P/∂x_j + s_i d · ∂²P/∂x_i∂x_j
+/// (the second term only within one side). Constant sizes let the compiler unroll the loops
+/// for each of the nine feature pair kinds; the arithmetic and its order are the same for all.
+fn assemble<const NA: usize, const NB: usize>(
+    ea: &FeatureEval,
+    eb: &FeatureEval,
+    d: DVec3,
+) -> Assembled {
+    let n = NA + NB;
+    let mut first = [DVec3::ZERO; 4];
+    first[..NA].copy_from_slice(&ea.d[..NA]);
+    first[NA..n].copy_from_slice(&eb.d[..NB]);
+    let mut length = [0.0; 4];
+    for i in 0..n {
+        length[i] = first[i].length();
+    }
+    let max_speed = length[..n].iter().fold(0.0_f64, |m, l| m.max(*l));
+    let floor = (1e-12 * max_speed).max(f64::MIN_POSITIVE.sqrt());
+    let mut speed = [1.0; 4];
+    for i in 0..n {
+        speed[i] = length[i].max(floor);
+    }
+    let mut gs = [0.0; 4];
+    let mut hs = [[0.0; 4]; 4];
+    // Squared, so that the loop takes no square roots.
+    let mut curvature2 = 0.0_f64;
+    for i in 0..n {
+        let (si, ai) = if i < NA { (1.0, true) } else { (-1.0, false) };
+        gs[i] = si * d.dot(first[i]) / speed[i];
+        // The Hessian is symmetric: fill the upper triangle and mirror it.
+        for j in i..n {
+            let sj = if j < NA { 1.0 } else { -1.0 };
+            let same_side = (j < NA) == ai;
+            let speeds = speed[i] * speed[j];
+            let second = if same_side {
+                let dd = if ai {
+                    ea.dd[i][j]
+                } else {
+                    eb.dd[i - NA][j - NA]
+                };
+                curvature2 = curvature2.max(dd.length_squared() / (speeds * speeds));
+                si * d.dot(dd)
+            } else {
+                0.0
+            };
+            hs[i][j] = (si * sj * first[i].dot(first[j]) + second) / speeds;
+            hs[j][i] = hs[i][j];
+        }
+    }
+    Assembled {
+        speed,
+        gs,
+        hs,
+        curvature: curvature2.sqrt(),
     }
 }
 
@@ -248,14 +345,18 @@ pub(crate) fn solve(
     base_scale: f64,
     options: &NewtonOptions,
 ) -> Solution {
-    let mut first = minimize(
+    // The start's snap evaluates each face there; the first state reuses those evaluations.
+    let mut known = [None, None];
+    let la = settle_start(a, la, &mut known[0]);
+    let lb = settle_start(b, lb, &mut known[1]);
+    let mut first = minimize_known(
         a,
         b,
-        settle_start(a, la),
-        settle_start(b, lb),
+        (la, lb),
         base_scale,
         options,
         Reentry::Allowed,
+        [known[0].as_ref(), known[1].as_ref()],
     );
     if first.outcome == Outcome::IterationLimit {
         // Slow, not lost: at an exact touch the gap is quartic in the offset along the flattest
@@ -694,7 +795,21 @@ pub(crate) fn minimize(
     options: &NewtonOptions,
     reentry: Reentry,
 ) -> Solution {
-    let mut cur = State::new(a, b, la, lb, base_scale);
+    minimize_known(a, b, (la, lb), base_scale, options, reentry, [None, None])
+}
+
+/// [`minimize`], the first state taking each face's evaluation from `known` where it is of that
+/// face point ([`State::evaluated`]).
+fn minimize_known(
+    a: &Body,
+    b: &Body,
+    (la, lb): (Loc, Loc),
+    base_scale: f64,
+    options: &NewtonOptions,
+    reentry: Reentry,
+    known: [Option<&LocalFacePoint>; 2],
+) -> Solution {
+    let mut cur = State::evaluated(a, b, la, lb, base_scale, known);
     let (max_radius, mut radius) = cur.trust_radii();
     let mut switches = 0;
     let end = |state, iterations, outcome| Solution {
@@ -708,7 +823,7 @@ pub(crate) fn minimize(
     // (its model failed there, e.g. approaching an intersection curve, where |d| has a kink).
     let mut distance_ok = true;
     for iteration in 0..options.max_iterations {
-        if fresh && reentry == Reentry::Allowed && cur.penetrating(a, b) {
+        if fresh && reentry == Reentry::Allowed && cur.penetrating_remembered(a, b) {
             return end(cur, iteration, Outcome::Penetrating);
         }
         fresh = true;
@@ -732,7 +847,7 @@ pub(crate) fn minimize(
                     return end(cur, iteration, Outcome::Converged);
                 }
                 let eigen = sym_eigen(&cur.hs, cur.n);
-                let floor = cur.eigen_floor(&eigen);
+                let floor = cur.eigen_floor(&eigen.values);
                 if eigen.values[0] >= -floor {
                     return end(cur, iteration, Outcome::Converged);
                 }
@@ -758,7 +873,7 @@ pub(crate) fn minimize(
                 if eigen.values[..n].iter().any(|l| !l.is_finite()) {
                     return end(cur, iteration, Outcome::Stalled);
                 }
-                let floor = cur.eigen_floor(&eigen).max(f64::MIN_POSITIVE);
+                let floor = cur.eigen_floor(&eigen.values).max(f64::MIN_POSITIVE);
                 descent_step(&cur, &eigen, floor)
             }
         };
@@ -826,7 +941,12 @@ fn newton_step(cur: &State) -> Option<[f64; 4]> {
 /// 30-degree limit; at the answer g = 0, so M = H and convergence stays quadratic. Where M is
 /// positive definite so is H (M ≤ H), so this never replaces a saddle-free step.
 fn distance_newton_step(cur: &State) -> Option<[f64; 4]> {
-    let n = cur.n;
+    by_size!(cur.n, distance_newton_step_n(cur))
+}
+
+/// [`distance_newton_step`] for `N` = `cur.n` variables.
+fn distance_newton_step_n<const N: usize>(cur: &State) -> Option<[f64; 4]> {
+    let n = N;
     let distance2 = cur.d.length_squared();
     let tangential2: f64 = cur.gs[..n].iter().map(|g| g * g).sum();
     // |d| well above rounding (its direction means something), the angle below 30 degrees.
@@ -840,14 +960,19 @@ fn distance_newton_step(cur: &State) -> Option<[f64; 4]> {
             m[i][j] -= cur.gs[i] * cur.gs[j] / distance2;
         }
     }
-    positive_definite_solve(cur, &m)
+    positive_definite_solve_n::<N>(cur, &m)
 }
 
 /// −M⁻¹g for the scaled gradient g of `cur`, where M factors and its smallest eigenvalue
 /// provably exceeds the eigenvalue floor of `cur` with ‖M‖_F for the largest; `None` otherwise.
 fn positive_definite_solve(cur: &State, m: &[[f64; 4]; 4]) -> Option<[f64; 4]> {
-    let n = cur.n;
-    let l = cholesky(m, n)?;
+    by_size!(cur.n, positive_definite_solve_n(cur, m))
+}
+
+/// [`positive_definite_solve`] for `N` = `cur.n` variables.
+fn positive_definite_solve_n<const N: usize>(cur: &State, m: &[[f64; 4]; 4]) -> Option<[f64; 4]> {
+    let n = N;
+    let l = cholesky_n::<N>(m)?;
     let frobenius = m[..n]
         .iter()
         .flat_map(|row| &row[..n])
@@ -855,10 +980,10 @@ fn positive_definite_solve(cur: &State, m: &[[f64; 4]; 4]) -> Option<[f64; 4]> {
         .sum::<f64>()
         .sqrt();
     let floor = (64.0 * EPS * (frobenius + cur.scale * cur.curvature)).max(f64::MIN_POSITIVE);
-    if smallest_eigenvalue_bound(&l, n) < floor {
+    if smallest_eigenvalue_bound::<N>(&l) < floor {
         return None;
     }
-    let x = cholesky_solve(&l, n, &cur.gs);
+    let x = cholesky_solve_n::<N>(&l, &cur.gs);
     Some(std::array::from_fn(|i| -x[i]))
 }
 

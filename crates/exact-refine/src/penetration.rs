@@ -30,7 +30,7 @@ use crate::newton::{
     EPS, Outcome, Reentry, Solution, State, minimize, minimize_projection, take_step,
 };
 use crate::options::NewtonOptions;
-use crate::sym_eigen::sym_eigen;
+use crate::sym_eigen::{sym_eigen, sym_eigenvalues};
 use geom_param::{DVec3, FeatureLocation};
 
 /// Solves for the penetration witness from (`la`, `lb`) as described in the module docs.
@@ -255,9 +255,9 @@ pub(crate) fn saddle_newton(
         if cur.stationary(options) || negligible {
             // The end (stationary, or the step below what the coordinates can represent) is
             // the witness only with its inertia.
-            let eigen = sym_eigen(&cur.hs, n);
-            let floor = cur.eigen_floor(&eigen);
-            let values = &eigen.values[..n];
+            let spectrum = sym_eigenvalues(&cur.hs, n);
+            let floor = cur.eigen_floor(&spectrum);
+            let values = &spectrum[..n];
             // Also rejects NaN: every comparison with NaN is false.
             let inertia = values.iter().all(|l| l.abs() > floor)
                 && values.iter().filter(|&&l| l < 0.0).count() == target;

@@ -5,6 +5,7 @@
 //! copied from earlier runs except the paper's own figures, which are labelled as such.
 
 pub mod accuracy_scene;
+pub mod coherence_table;
 pub mod error_vs_time;
 pub mod machine;
 pub mod mesh_seed_refiner;
@@ -47,6 +48,8 @@ pub struct ReportSettings {
     pub world_counts: Vec<usize>,
     /// Steps timed per world (medians).
     pub world_steps: usize,
+    /// Passes of the coherence table's trajectory timed per way (medians).
+    pub coherence_passes: usize,
 }
 
 impl ReportSettings {
@@ -74,6 +77,7 @@ impl ReportSettings {
             picture_size: (960, 720),
             world_counts: vec![10, 100, 1000],
             world_steps: 20,
+            coherence_passes: 15,
         }
     }
 
@@ -102,6 +106,7 @@ impl ReportSettings {
             picture_size: (160, 120),
             world_counts: vec![10],
             world_steps: 2,
+            coherence_passes: 1,
         }
     }
 }
@@ -168,6 +173,9 @@ pub fn write_report(root: &Path, out_dir: &Path, settings: &ReportSettings) -> R
         settings.world_steps,
     )?;
 
+    eprintln!("report: coherence");
+    let coherence = coherence_table::coherence_table(root, settings.coherence_passes)?;
+
     eprintln!("report: pictures");
     let pictures = settings
         .paper_scenes
@@ -191,6 +199,7 @@ pub fn write_report(root: &Path, out_dir: &Path, settings: &ReportSettings) -> R
         stage2: &stage2,
         pictures: &pictures,
         worlds: &worlds,
+        coherence: &coherence,
     });
     write(&out_dir.join("REPORT.md"), text.as_bytes())
 }

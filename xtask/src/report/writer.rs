@@ -38,6 +38,8 @@ pub struct ReportData<'a> {
     pub pictures: &'a [(&'static str, String)],
     /// The many-object worlds table (markdown, [`crate::world_scene::world_table`]).
     pub worlds: &'a str,
+    /// The coherence table (markdown, [`super::coherence_table::coherence_table`]).
+    pub coherence: &'a str,
 }
 
 /// An error in mm, in scientific notation; "0" for exactly zero.
@@ -83,13 +85,14 @@ pub fn markdown(data: &ReportData<'_>) -> String {
     );
     let _ = writeln!(
         s,
-        "Contents: 1. error against run time (and the ratios), 2. the paper's tables beside ours, 3. where the time goes, 4. pictures, 5. many-object worlds.\n"
+        "Contents: 1. error against run time (and the ratios), 2. the paper's tables beside ours, 3. where the time goes, 4. pictures, 5. many-object worlds, 6. frame-to-frame coherence.\n"
     );
     accuracy_section(s, data);
     paper_section(s, data);
     stage_section(s, data);
     picture_section(s, data);
     world_section(s, data);
+    coherence_section(s, data);
     out
 }
 
@@ -506,4 +509,15 @@ fn world_section(s: &mut String, data: &ReportData<'_>) {
         steps = data.settings.world_steps,
     );
     let _ = writeln!(s, "{}", data.worlds);
+}
+
+fn coherence_section(s: &mut String, data: &ReportData<'_>) {
+    let _ = writeln!(s, "## 6. Frame-to-frame coherence\n");
+    let _ = writeln!(
+        s,
+        "`ContactPipeline::query_coherent` against cold queries (`query_into` with a persistent scratch) on the paper scenes, in the same run (`cargo xtask coherence`, `xtask/src/report/coherence_table.rs`; the same trajectory as `cargo bench -p contact-pipeline --bench coherence`): B rolls back and forth about the first contact by up to 2e-3 rad, 2.5e-5 rad per frame at most, over {frames} frames, lifted 2 µm so that both contacts stay in the band. **warm** is the default (a full query at least every 64 frames, so its time includes them), **warm-only** never breaks the chain by the frame count (a full query only when the motion certificate runs out), **cold** runs every stage every frame. Medians over {passes} passes of the mean time per frame (µs); the target of issue 16 is at most 3 µs per contact per warm frame.\n",
+        frames = super::coherence_table::FRAMES,
+        passes = data.settings.coherence_passes,
+    );
+    let _ = writeln!(s, "{}", data.coherence);
 }
