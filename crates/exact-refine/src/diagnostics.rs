@@ -7,7 +7,7 @@
 use crate::feature_eval::Body;
 use crate::newton::{EPS, Outcome, Solution, State, by_pair_kind, is_touch};
 use crate::refiner::{RefineDiagnostics, RefineStatus};
-use crate::sym_eigen::sym_eigenvalues_pair;
+use crate::sym_eigen::{sym_eigenvalues, sym_eigenvalues_pair};
 use geom_param::DVec3;
 
 /// Diagnostics of `solution` (a pair solve between `a` and `b`) whose unit normal from A to B
@@ -252,7 +252,7 @@ fn gap_curvature(state: &State, normal: DVec3) -> f64 {
         }
     }
     let smallest = |m: &[[f64; 4]; 4]| {
-        sym_eigen(m, n).values[..n]
+        sym_eigenvalues(m, n)[..n]
             .iter()
             .fold(f64::INFINITY, |s, l| s.min(l.abs()))
     };
