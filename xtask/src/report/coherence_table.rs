@@ -42,7 +42,19 @@ struct Row {
 /// A message when a scene does not load or a query fails.
 pub fn coherence_table(root: &Path, passes: usize) -> Result<String, String> {
     let passes = passes.max(1);
-    let mut text = String::from(
+    // The machine is shared: say how busy it was (the 1-minute load average, where the system
+    // reports one) before the table, whose times depend on it.
+    let load = std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|l| l.split_whitespace().next().map(str::to_owned));
+    let mut text = match load {
+        Some(load) => format!(
+            "1-minute load average when the measurement started: {load}, on {} logical cores.\n\n",
+            std::thread::available_parallelism().map_or(1, usize::from)
+        ),
+        None => String::new(),
+    };
+    text.push_str(
         "| scene | contacts per frame | warm frames | Newton steps per warm contact | warm (µs per frame) | warm, per contact (µs) | warm-only (µs per frame) | cold (µs per frame) | cold / warm |\n|---|---|---|---|---|---|---|---|---|\n",
     );
     for name in PAPER_SCENES {
