@@ -4,10 +4,11 @@
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 
+use crate::dense_solve::by_size;
 use crate::feature_eval::Body;
 use crate::newton::{EPS, Outcome, Solution, State, by_pair_kind, is_touch};
 use crate::refiner::{RefineDiagnostics, RefineStatus};
-use crate::sym_eigen::{sym_eigenvalues, sym_eigenvalues_pair};
+use crate::sym_eigen::sym_eigenvalues_lockstep;
 use geom_param::DVec3;
 
 /// Diagnostics of `solution` (a pair solve between `a` and `b`) whose unit normal from A to B
@@ -20,9 +21,20 @@ pub(crate) fn diagnose(
 ) -> RefineDiagnostics {
     let state = &solution.state;
     let n = state.n;
-    // Both spectra at once (independent chains of divisions and roots).
-    let gap = GapHessian::new(state, normal);
-    let [spectrum, gap_spectrum] = sym_eigenvalues_pair(&state.hs, &gap.h, n);
+    // The spectra at once (independent chains of divisions and roots): the Hessian's, the gap
+    // Hessian's and, where the sliding metric factors, the gap Hessian's in that metric.
+    let gap_hessian = GapHessian::new(state, normal);
+    let metric = gap_metric(state, &gap_hessian.h);
+    let (spectrum, gap_spectrum, metric_spectrum) = match &metric.congruent {
+        Some(c) => {
+            let [s, g, m] = sym_eigenvalues_lockstep([&state.hs, &gap_hessian.h, c], n);
+            (s, g, Some(m))
+        }
+        None => {
+            let [s, g] = sym_eigenvalues_lockstep([&state.hs, &gap_hessian.h], n);
+            (s, g, None)
+        }
+    };
     let values = &spectrum[..n];
     let floor = state.eigen_floor(&spectrum);
     let largest = values.iter().fold(0.0_f64, |m, l| m.max(l.abs()));
@@ -44,7 +56,7 @@ pub(crate) fn diagnose(
         0 => values.first().is_none_or(|&l| l >= -floor),
         k => values[k - 1] <= floor && values.get(k).is_none_or(|&l| l >= -floor),
     };
-    let (kappa, degenerate) = gap.relative_curvature(&gap_spectrum, n);
+    let (kappa, degenerate) = gap_hessian.relative_curvature(&gap_spectrum, n);
     let status = match solution.outcome {
         Outcome::Converged if degenerate => RefineStatus::ContinuousContact,
         Outcome::Converged => RefineStatus::Converged,
@@ -111,7 +123,7 @@ pub(crate) fn diagnose(
         gap_curvature: if degenerate {
             0.0
         } else {
-            gap_curvature(state, normal)
+            metric.gap_curvature(&gap_hessian, &gap_spectrum, metric_spectrum.as_ref(), n)
         },
         status,
     }
@@ -210,8 +222,9 @@ fn gap_hessian<const NA: usize, const NB: usize>(state: &State, d: DVec3) -> [[f
     h
 }
 
-/// The gap function's smallest curvature (1/mm, [`RefineDiagnostics::gap_curvature`]): the
-/// smallest eigenvalue of the scaled Hessian at separation ℓ (as in [`relative_curvature`])
+/// The metric of the gap function's smallest curvature (1/mm,
+/// [`RefineDiagnostics::gap_curvature`]): that curvature is the smallest eigenvalue of the
+/// scaled Hessian at separation ℓ ([`GapHessian`])
 /// measured against the squared length the pair slides, divided by ℓ. A parameter step v (arc
 /// lengths) moves A's point by J_a v_a and B's by J_b v_b; rolling both points by the same
 /// unit tangent t has vᵀ G v = 2 (G = blockdiag(J_aᵀJ_a, J_bᵀJ_b), the first fundamental forms
@@ -221,50 +234,77 @@ fn gap_hessian<const NA: usize, const NB: usize>(state: &State, d: DVec3) -> [[f
 /// where G is singular (a parameter whose direction vanishes, at a pole) the smallest
 /// eigenvalue of H itself stands in (the rolling direction's norm is then 2, not 1, on
 /// orthonormal parameters: an estimate within a factor 2).
-fn gap_curvature(state: &State, normal: DVec3) -> f64 {
-    let (n, na) = (state.n, state.na);
+struct GapMetric {
+    /// 1/2 when both sides have parameters, 1 otherwise.
+    weight: f64,
+    /// L⁻¹ H L⁻ᵀ with G / w = L Lᵀ, `None` where G does not factor (or there are no variables).
+    congruent: Option<[[f64; 4]; 4]>,
+}
+
+/// The [`GapMetric`] of `state`, whose gap Hessian ([`GapHessian::h`]) is `h`.
+fn gap_metric(state: &State, h: &[[f64; 4]; 4]) -> GapMetric {
+    by_size!(state.n, gap_metric_n(state, h))
+}
+
+/// [`gap_metric`] for `N` = `state.n` variables (loops of constant length, unrolled; the same
+/// arithmetic).
+fn gap_metric_n<const N: usize>(state: &State, h: &[[f64; 4]; 4]) -> GapMetric {
+    let (n, na) = (N, state.na);
+    let weight = if na > 0 && na < n { 0.5 } else { 1.0 };
     if n == 0 {
-        return f64::INFINITY;
+        return GapMetric {
+            weight,
+            congruent: None,
+        };
     }
-    let curvature = state.curvature.max(1.0 / state.scale);
-    let ell = state.d.length().max(EPS.sqrt() / curvature);
-    let d = -normal * ell;
     let mut first = [DVec3::ZERO; 4];
     first[..na].copy_from_slice(&state.ea.d[..na]);
     first[na..n].copy_from_slice(&state.eb.d[..n - na]);
-    let weight = if na > 0 && na < n { 0.5 } else { 1.0 };
-    let mut h = [[0.0; 4]; 4];
     let mut g = [[0.0; 4]; 4];
     for i in 0..n {
         for j in 0..n {
-            let same = (i < na) == (j < na);
-            let sign = if same { 1.0 } else { -1.0 };
-            let second = match (i < na, j < na) {
-                (true, true) => d.dot(state.ea.dd[i][j]),
-                (false, false) => -d.dot(state.eb.dd[i - na][j - na]),
-                _ => 0.0,
-            };
-            let scale = state.speed[i] * state.speed[j];
-            h[i][j] = (sign * first[i].dot(first[j]) + second) / scale;
-            if same {
+            if (i < na) == (j < na) {
+                let scale = state.speed[i] * state.speed[j];
                 g[i][j] = weight * first[i].dot(first[j]) / scale;
             }
         }
     }
-    let smallest = |m: &[[f64; 4]; 4]| {
-        sym_eigenvalues(m, n)[..n]
-            .iter()
-            .fold(f64::INFINITY, |s, l| s.min(l.abs()))
-    };
-    match cholesky(&g, n) {
-        Some(l) => smallest(&congruence(&h, &l, n)) / ell,
-        None => 2.0 * weight * smallest(&h) / ell,
+    GapMetric {
+        weight,
+        congruent: cholesky::<N>(&g).map(|l| congruence::<N>(h, &l)),
+    }
+}
+
+impl GapMetric {
+    /// The gap curvature (1/mm) from the spectra of the gap Hessian (`gap_spectrum`) and of
+    /// [`Self::congruent`] (`metric_spectrum`, when it exists), of their first `n` rows and
+    /// columns; ∞ with no variables.
+    fn gap_curvature(
+        &self,
+        gap: &GapHessian,
+        gap_spectrum: &[f64; 4],
+        metric_spectrum: Option<&[f64; 4]>,
+        n: usize,
+    ) -> f64 {
+        if n == 0 {
+            return f64::INFINITY;
+        }
+        let smallest = |values: &[f64; 4]| {
+            values[..n]
+                .iter()
+                .fold(f64::INFINITY, |s, l| s.min(l.abs()))
+        };
+        match metric_spectrum {
+            Some(values) => smallest(values) / gap.ell,
+            None => 2.0 * self.weight * smallest(gap_spectrum) / gap.ell,
+        }
     }
 }
 
 /// The lower-triangular L with L Lᵀ = m (leading n x n block), `None` when m is not positive
 /// definite to 1e-12 of its diagonal.
-fn cholesky(m: &[[f64; 4]; 4], n: usize) -> Option<[[f64; 4]; 4]> {
+fn cholesky<const N: usize>(m: &[[f64; 4]; 4]) -> Option<[[f64; 4]; 4]> {
+    let n = N;
     let mut l = [[0.0; 4]; 4];
     for i in 0..n {
         for j in 0..=i {
@@ -288,7 +328,8 @@ fn cholesky(m: &[[f64; 4]; 4], n: usize) -> Option<[[f64; 4]; 4]> {
 
 /// L⁻¹ h L⁻ᵀ for lower-triangular L (leading n x n block), by forward substitution on the
 /// columns and then on the rows.
-fn congruence(h: &[[f64; 4]; 4], l: &[[f64; 4]; 4], n: usize) -> [[f64; 4]; 4] {
+fn congruence<const N: usize>(h: &[[f64; 4]; 4], l: &[[f64; 4]; 4]) -> [[f64; 4]; 4] {
+    let n = N;
     // x = L⁻¹ h: solve L x = h column by column.
     let solve = |b: [f64; 4]| {
         let mut x = [0.0; 4];

@@ -41,28 +41,27 @@ pub(crate) fn sym_eigenvalues(matrix: &[[f64; 4]; 4], n: usize) -> [f64; 4] {
     .values
 }
 
-/// [`sym_eigenvalues`] of two matrices at once (the leading `n` x `n` blocks of both): each
-/// gets exactly the rotations [`sym_eigenvalues`] would give it, so the same bits, but the two
-/// run in lockstep. A rotation is a chain of divisions and square roots, each waiting for the
-/// last; two independent chains side by side keep the processor busy in each other's waits.
-pub(crate) fn sym_eigenvalues_pair(
-    first: &[[f64; 4]; 4],
-    second: &[[f64; 4]; 4],
+/// [`sym_eigenvalues`] of `K` matrices at once (the leading `n` x `n` blocks of each): each
+/// gets exactly the rotations [`sym_eigenvalues`] would give it, so the same bits, but they run
+/// in lockstep. A rotation is a chain of divisions and square roots, each waiting for the
+/// last; independent chains side by side keep the processor busy in each other's waits.
+pub(crate) fn sym_eigenvalues_lockstep<const K: usize>(
+    matrices: [&[[f64; 4]; 4]; K],
     n: usize,
-) -> [[f64; 4]; 2] {
+) -> [[f64; 4]; K] {
     match n {
-        0 => jacobi_pair::<0>(first, second),
-        1 => jacobi_pair::<1>(first, second),
-        2 => jacobi_pair::<2>(first, second),
-        3 => jacobi_pair::<3>(first, second),
-        _ => jacobi_pair::<4>(first, second),
+        0 => jacobi_lockstep::<0, K>(matrices),
+        1 => jacobi_lockstep::<1, K>(matrices),
+        2 => jacobi_lockstep::<2, K>(matrices),
+        3 => jacobi_lockstep::<3, K>(matrices),
+        _ => jacobi_lockstep::<4, K>(matrices),
     }
 }
 
-/// [`sym_eigenvalues_pair`] on the leading `N` x `N` blocks: each matrix stops rotating at the
-/// first sweep that finds it converged, as [`jacobi`] stops, and gets at most `MAX_SWEEPS`.
-fn jacobi_pair<const N: usize>(first: &[[f64; 4]; 4], second: &[[f64; 4]; 4]) -> [[f64; 4]; 2] {
-    let mut a = [*first, *second];
+/// [`sym_eigenvalues_lockstep`] on the leading `N` x `N` blocks: each matrix stops rotating at
+/// the first sweep that finds it converged, as [`jacobi`] stops, and gets at most `MAX_SWEEPS`.
+fn jacobi_lockstep<const N: usize, const K: usize>(matrices: [&[[f64; 4]; 4]; K]) -> [[f64; 4]; K] {
+    let mut a = matrices.map(|m| *m);
     let norm2 = a.map(|m| {
         let mut norm2 = 0.0;
         for i in 0..N {
@@ -72,7 +71,7 @@ fn jacobi_pair<const N: usize>(first: &[[f64; 4]; 4], second: &[[f64; 4]; 4]) ->
         }
         norm2
     });
-    let mut done = [false; 2];
+    let mut done = [false; K];
     for _ in 0..MAX_SWEEPS {
         for (m, (finished, norm2)) in a.iter().zip(done.iter_mut().zip(norm2)) {
             if !*finished {
@@ -85,7 +84,7 @@ fn jacobi_pair<const N: usize>(first: &[[f64; 4]; 4], second: &[[f64; 4]; 4]) ->
                 *finished = off.is_nan() || off <= 16.0 * f64::EPSILON * f64::EPSILON * norm2;
             }
         }
-        if done[0] && done[1] {
+        if done.iter().all(|&finished| finished) {
             break;
         }
         for p in 0..N {
@@ -231,7 +230,7 @@ fn jacobi<const N: usize, const VECTORS: bool>(matrix: &[[f64; 4]; 4]) -> SymEig
 
 #[cfg(test)]
 mod tests {
-    use super::{sym_eigen, sym_eigenvalues, sym_eigenvalues_pair};
+    use super::{sym_eigen, sym_eigenvalues, sym_eigenvalues_lockstep};
 
     /// A symmetric matrix with a planted spectrum: Q diag(λ) Qᵀ for a rotation Q (a product
     /// of plane rotations), so the eigenvalues are known without this module.
@@ -286,12 +285,15 @@ mod tests {
                 }
             }
             for (x, y) in [(m, near_diagonal), (near_diagonal, m), (m, m)] {
-                let pair = sym_eigenvalues_pair(&x, &y, n);
+                let pair = sym_eigenvalues_lockstep([&x, &y], n);
                 let single = [sym_eigenvalues(&x, n), sym_eigenvalues(&y, n)];
                 assert_eq!(
                     pair.map(|v| v.map(f64::to_bits)),
                     single.map(|v| v.map(f64::to_bits))
                 );
+                let triple = sym_eigenvalues_lockstep([&x, &near_diagonal, &y], n);
+                assert_eq!(triple[0].map(f64::to_bits), single[0].map(f64::to_bits));
+                assert_eq!(triple[2].map(f64::to_bits), single[1].map(f64::to_bits));
             }
             for k in 0..n {
                 assert!(
