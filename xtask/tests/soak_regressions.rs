@@ -1050,3 +1050,107 @@ fn a_rim_corner_inside_the_other_rim_is_a_penetration_without_depth() {
     assert!(report.contacts.is_empty(), "{report:?}");
     assert!(!report.penetration_witnesses.is_empty(), "{report:?}");
 }
+
+/// `soak 10000 --seed 5001`, bowl-goblet 15792735999226477639 and vase-paperweight
+/// 12715638325627673761, built as exact touches at 8.64e-10 and -7.53e-10 mm: the pipeline said
+/// separated. The goblet's flat foot touches the bowl's gently curved outer wall (relative
+/// curvatures 0.006 and 0.033 / mm), and the vase's flat top the paperweight's fillet, with the
+/// flat faces' points 4.35 and 0.61 mm from their centres, where their polar parameters' lines
+/// curve with radius 4.35 and 0.61 mm. A parameter step of L mm moved the point off its linear
+/// prediction by about L² / 2ρ along the face, which enters f at (L² / 2ρ)², above f itself
+/// wherever the relative curvature is below 1 / ρ: every step that would have reached the touch
+/// was rejected, and the pair solve crept to the iteration limit (128, gradient 3e-10 mm).
+/// The steps now carry the second-order tangential correction (`newton::tangential_correction`).
+/// Independent fact: the gap each pose was built with.
+#[test]
+fn a_flat_face_touching_a_gently_curved_one_is_a_contact() {
+    let (pipeline, objects) = setup();
+    let cases = [
+        (
+            "bowl",
+            "goblet",
+            pose(
+                [-35.276939389988584, 25.93145639393512, 26.549986928912972],
+                [
+                    0.6760414417218049,
+                    -0.3620601272961803,
+                    -0.6410294653478823,
+                    -0.031010608713562274,
+                ],
+            ),
+            8.638908181622451e-10,
+        ),
+        (
+            "vase",
+            "paperweight",
+            pose(
+                [3.5933994361769326, 4.594667516281691, 134.11437951638734],
+                [
+                    0.6145418795111469,
+                    -0.42331568729874214,
+                    -0.07729777617167394,
+                    0.661186177269772,
+                ],
+            ),
+            -7.525276863464483e-10,
+        ),
+    ];
+    for (a, b, pose_b, built) in cases {
+        let report = query(
+            &pipeline,
+            &objects[a],
+            &DPose3::IDENTITY,
+            &objects[b],
+            &pose_b,
+            &mut QueryScratch::default(),
+        );
+        assert_eq!(report.state, PairState::Contact, "{a}-{b}: {report:?}");
+        let touch = report
+            .contacts
+            .iter()
+            .find(|c| (c.distance - built).abs() < 1e-8)
+            .unwrap_or_else(|| panic!("{a}-{b}: no contact at {built}: {report:?}"));
+        assert!(touch.diagnostics.converged, "{a}-{b}: {touch:?}");
+    }
+}
+
+/// `soak 10000 --seed 5001`, paperweight-paperweight 372104035749994050 (built as an overlap of
+/// -4.520e-4 mm): Stage 2's seed puts A's point on the pole of its dome, where u runs round the
+/// pole at zero speed. The pair solve went onto the pole vertex, re-entered the face exactly on
+/// the pole (v = 1), where its steps were 1e-10 mm long, and either crept round the pole (84
+/// iterations) or, with the tangential step correction, went back to the vertex and cycled to
+/// the feature-switch limit (separated). Re-entry from a pole now moves the point off it along
+/// the chosen meridian (`feature_switch::off_vertex`). Independent check: the dome is a sphere
+/// of radius 18 about (0, 0, 36.1245) (the profile's arc), B's bottom a plane; the overlap is
+/// s(c) − R, s the signed distance to the plane and c the centre.
+#[test]
+fn a_seed_on_a_dome_pole_finds_the_overlap() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [21.91965725564601, 14.59420486790374, 55.111983276872344],
+        [
+            0.011137694424148836,
+            0.017132342269524092,
+            -0.9991358423522583,
+            0.036193965495885834,
+        ],
+    );
+    let (ab, ba) = both_orders(&pipeline, &objects, "paperweight", "paperweight", &pose_b);
+    let centre = DVec3::new(0.0, 0.0, 36.124_515_496_597_1);
+    let outward = pose_b.rotation * DVec3::NEG_Z;
+    let overlap = (centre - pose_b.translation).dot(outward) - 18.0;
+    assert!(
+        overlap < 0.0 && overlap > pipeline.options().delta1,
+        "{overlap}"
+    );
+    for report in [&ab, &ba] {
+        assert_eq!(report.state, PairState::Contact, "{report:?}");
+        assert!(
+            report
+                .contacts
+                .iter()
+                .any(|c| (c.distance - overlap).abs() < 1e-9),
+            "no contact at {overlap}: {report:?}"
+        );
+    }
+}

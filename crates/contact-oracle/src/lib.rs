@@ -14,8 +14,8 @@
 //!    exact p-curves decide, a corner by its sector); the edges that run along no rectangle
 //!    side are sampled on their own curves, their end vertices (corners) included.
 //! 2. For each sample the nearest sample of the other solid (own kd-tree); samples whose
-//!    nearest distance is a discrete local minimum within 1.5 spacings are candidates, from
-//!    both sides (`local_minima`).
+//!    nearest distance is a discrete local minimum among their own face's samples within 1.5
+//!    spacings are candidates, from both sides (`local_minima`).
 //! 3. Each candidate is polished by Levenberg–Marquardt on f = ½|S_a − S_b|² over
 //!    (u_a, v_a, u_b, v_b) with bounds as active constraints, crossing edges and turning at
 //!    poles (`polish`). On a trimmed face the bound is the trim: a step that leaves it stops

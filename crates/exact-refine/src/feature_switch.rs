@@ -5,11 +5,43 @@
 use crate::feature_eval::{
     Body, Loc, LocalFacePoint, inward_tangent, side_of, side_params, vertex_sides, wrap,
 };
-use geom_param::{Boundary, DVec2, DVec3, EdgeUse, FeatureLocation, SurfacePoint};
+use geom_param::{
+    Boundary, DVec2, DVec3, EdgeUse, FeatureLocation, ParamRange, ParamSide, SurfacePoint,
+};
 
 /// Samples of the running parameter tried when leaving a vertex into a face: the best one is
 /// only a start, Newton then turns the running parameter to the optimum.
 const VERTEX_EXIT_SAMPLES: u32 = 16;
+
+/// The parameter across a face side that collapses into a smooth pole, moved from
+/// `x` (on the side) into the face by the pull's component along the meridian `tangent` (the
+/// side's inward direction, ∂S/∂x turned inward, in the pull's frame), at most a quarter of the range: the first
+/// Newton step along that meridian where f's Hessian there is about the identity (a dome's
+/// pole under a plane: the point moves by the connecting vector's tangential component).
+/// `x` where the pull does not enter the face.
+///
+/// Why not the side itself: there the other parameter runs around the vertex at zero speed, so
+/// it is no coordinate, and the Newton system in it is singular to rounding (scaled Hessian
+/// entries |d| |∂²S/∂u∂v| / speed floor ~ 1e6): the steps from the pole were 1e-10 mm long,
+/// and the solve either crept around the pole (u jumping between meridians, 80 steps) or went
+/// back onto the vertex and cycled to the feature-switch limit (a paperweight's dome pole
+/// 0.0146 mm from a tilted flat bottom, where the witness lies 0.73 mm off the pole).
+fn off_vertex(range: &ParamRange, side: ParamSide, x: f64, tangent: DVec3, pull: DVec3) -> f64 {
+    let speed = tangent.length();
+    let along = pull.dot(tangent.normalize_or_zero());
+    if !(speed > 0.0 && along > 0.0) {
+        return x;
+    }
+    let inward = match side {
+        ParamSide::UMin | ParamSide::VMin => 1.0,
+        ParamSide::UMax | ParamSide::VMax => -1.0,
+    };
+    let step = (along / speed).min(0.25 * range.span());
+    if !step.is_finite() {
+        return x;
+    }
+    x + inward * step
+}
 
 /// Wraps periodic parameters, clamps the others, and where a non-periodic face parameter is on
 /// its side switches to what lies beyond it: the edge (with t = the parameter running along the
@@ -344,18 +376,40 @@ pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Lo
                 }
             }
             for (face_id, side) in vertex_sides(solid, id) {
-                let range = solid.face(face_id).surface.domain()[usize::from(matches!(
-                    side,
-                    geom_param::ParamSide::UMin | geom_param::ParamSide::UMax
-                ))];
+                let surface = &solid.face(face_id).surface;
+                let domain = surface.domain();
+                let across = usize::from(matches!(side, ParamSide::VMin | ParamSide::VMax));
+                let range = domain[1 - across];
                 for k in 0..VERTEX_EXIT_SAMPLES {
                     let t =
                         range.min + range.span() * f64::from(k) / f64::from(VERTEX_EXIT_SAMPLES);
-                    let surface = &solid.face(face_id).surface;
-                    let [u, v] = side_params(&surface.domain(), side, t);
+                    let [u, v] = side_params(&domain, side, t);
+                    let tangent = inward_tangent(surface.eval(u, v), side);
+                    let mut uv = [u, v];
+                    // Off a smooth pole only, where the meridian half a turn round leaves in the
+                    // opposite direction (a tangent plane); an apex (a cone's tip) is a vertex
+                    // of the solid, and its re-entry starts on it as before.
+                    let [ou, ov] = side_params(&domain, side, t + 0.5 * range.span());
+                    let opposite = inward_tangent(surface.eval(ou, ov), side);
+                    let smooth = (tangent.normalize_or_zero() + opposite.normalize_or_zero())
+                        .length()
+                        <= 1e-6;
+                    if smooth {
+                        uv[across] = off_vertex(
+                            &domain[across],
+                            side,
+                            uv[across],
+                            frame.vector(tangent),
+                            pull,
+                        );
+                    }
                     offer(
-                        inward_tangent(surface.eval(u, v), side),
-                        FeatureLocation::Face { id: face_id, u, v },
+                        tangent,
+                        FeatureLocation::Face {
+                            id: face_id,
+                            u: uv[0],
+                            v: uv[1],
+                        },
                     );
                 }
             }
