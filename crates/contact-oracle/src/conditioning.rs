@@ -24,11 +24,16 @@ const ROUNDING: f64 = 16.0 * f64::EPSILON;
 /// stationarity `tolerance` (mm). Infinite where the pair's Hessian is singular along a
 /// direction in which the gap is flat (a continuous contact, where any point of the set is an
 /// answer); the rounding floor alone when no parameter is free (a vertex against a vertex).
+///
+/// `snapped` (mm) is how far a point lies from the edge or vertex it is reported on (0 when
+/// reported on its face): moving a point by δ changes the arc-length gradient by at most δ,
+/// so it enters the bound as a residual, and the bound is never below it.
 pub(crate) fn point_error_bound(
     polished: &Polished,
     distance: f64,
     normal: DVec3,
     tolerance: f64,
+    snapped: f64,
 ) -> f64 {
     let e = &polished.eval;
     let floor = ROUNDING * e.pa.point.length().max(e.pb.point.length()).max(1.0);
@@ -39,7 +44,7 @@ pub(crate) fn point_error_bound(
         .collect();
     let n = free.len();
     if n == 0 {
-        return floor;
+        return floor + snapped;
     }
     // The gradient in arc-length variables, g_k / |c_k| over the free parameters (mm): the
     // offset it allows is |δ| <= |g| / λ in those variables, and a point moves by at most the
@@ -49,7 +54,7 @@ pub(crate) fn point_error_bound(
         .map(|&k| (e.g[k] / e.cols[k].length()).powi(2))
         .sum::<f64>()
         .sqrt();
-    let residual = gradient.max(polished.residual) + floor;
+    let residual = gradient.max(polished.residual).max(snapped) + floor;
     // The Hessian in arc-length variables, as evaluated (r = −d n).
     let arc = |m: &dyn Fn(usize, usize) -> f64| {
         let mut out = [[0.0; N]; N];
@@ -98,5 +103,5 @@ pub(crate) fn point_error_bound(
     } else {
         f64::INFINITY
     };
-    floor + std::f64::consts::SQRT_2 * linear.min(quartic)
+    floor + snapped.max(std::f64::consts::SQRT_2 * linear.min(quartic))
 }

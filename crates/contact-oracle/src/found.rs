@@ -18,7 +18,9 @@ use geom_param::FeatureLocation;
 /// ([`PosedSolid::sign_normal`]). Locations within `snap` (mm) of an edge or
 /// vertex of a trimmed face are reported on it ([`PosedSolid::location`]). The point error
 /// bound is the oracle's own, from the pair's conditioning and the stationarity `tolerance`
-/// (mm) it was polished to ([`point_error_bound`]).
+/// (mm) it was polished to ([`point_error_bound`]), and at least the distance from each
+/// point to the feature it is reported on (a point snapped to an edge lies up to `snap` from
+/// it).
 pub(crate) fn contact(
     a: &PosedSolid,
     b: &PosedSolid,
@@ -76,7 +78,10 @@ pub(crate) fn contact(
             .or(touching_normal)
             .unwrap_or(glam::DVec3::Z),
     };
-    let point_error_estimate = point_error_bound(polished, distance, normal, tolerance);
+    // A point reported on an edge or vertex it was snapped to (within `snap`) is that far
+    // from the feature it names.
+    let snapped = snap_offset(a, location_a, pa).max(snap_offset(b, location_b, pb));
+    let point_error_estimate = point_error_bound(polished, distance, normal, tolerance, snapped);
     OracleContact {
         point_a: pa,
         point_b: pb,
@@ -91,6 +96,17 @@ pub(crate) fn contact(
         residual,
         iterations,
         point_error_estimate,
+    }
+}
+
+/// How far `point` (world frame, mm) lies from the feature `location` names: 0 on a face
+/// (the point is the face's at its parameters), else the distance to the edge's curve point
+/// at t or to the vertex.
+fn snap_offset(solid: &PosedSolid, location: FeatureLocation, point: glam::DVec3) -> f64 {
+    match location {
+        FeatureLocation::Face { .. } => 0.0,
+        FeatureLocation::Edge { id, t } => solid.eval_edge(id, t).point.distance(point),
+        FeatureLocation::Vertex { id } => solid.vertex_point(id).distance(point),
     }
 }
 

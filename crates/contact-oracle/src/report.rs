@@ -38,7 +38,8 @@ pub struct OracleContact {
     /// conditioning of its polished pair: the residual over the smallest eigenvalue of the
     /// Hessian of ½|S_a − S_b|² in arc-length variables, or near touch, where that eigenvalue
     /// vanishes, (2 residual / κ²)^⅓ with κ the gap's smallest curvature (1/mm), whichever is
-    /// smaller, plus the coordinates' rounding. Infinite for a continuous contact (the gap flat
+    /// smaller, plus the coordinates' rounding, and at least the distance from each point to
+    /// the edge or vertex it is reported on (snapped within the oracle's snap distance). Infinite for a continuous contact (the gap flat
     /// along some direction: any point of the set is an answer).
     pub point_error_estimate: f64,
 }
