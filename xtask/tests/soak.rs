@@ -77,39 +77,16 @@ fn general_summary() -> &'static SoakSummary {
     })
 }
 
-/// Every failure of the run over every object, which is exactly today's one known failure.
-///
-/// FIXME(issue 18): loft-goblet 5159088000359678616 misses a second minimum, 5.4e-2 mm, of the
-/// loft's rim edge against the goblet's inner wall next to its smooth joint with the rim's top
-/// (face 5 at v = 0.003), 1.1 mm from the first (1.6e-2 mm, against face 4): Stage 2 gives one
-/// seed between the two, at the joint, and Newton from it reaches the first. When it is fixed,
-/// this becomes `assert_eq!(total.failure_count(), 0)` as for the paper objects.
+/// The run over every object has no failure: no missed, false, state, property or generator
+/// failure (oracle limits are listed, not failures). Its last one (issue 18), loft-goblet
+/// 5159088000359678616, a second minimum on the goblet's lip next to a smooth joint that
+/// Newton from its own seed walked past, is kept with its literal pose in
+/// `seed_face_regressions.rs`.
 #[test]
-fn general_soak_fails_only_where_known() {
+fn general_soak_has_no_failures() {
     let summary = general_summary();
     let total = totals(summary);
     assert_eq!(total.poses, GENERAL_POSES);
     assert_eq!(summary.pairs.len(), 100);
-    let failures: Vec<(String, u64, String)> = summary
-        .pairs
-        .iter()
-        .flat_map(|((a, b), stats)| {
-            stats
-                .failures
-                .iter()
-                .filter(|f| f.what != "oracle-limit")
-                .map(move |f| (format!("{a}-{b}"), f.seed, f.what.clone()))
-        })
-        .collect();
-    assert_eq!(
-        failures,
-        vec![(
-            "loft-goblet".to_string(),
-            5_159_088_000_359_678_616,
-            "missed".to_string()
-        )],
-        "\n{}",
-        render(summary)
-    );
-    assert_eq!(total.failure_count(), 1, "\n{}", render(summary));
+    assert_eq!(total.failure_count(), 0, "\n{}", render(summary));
 }

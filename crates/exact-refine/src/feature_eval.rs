@@ -2,7 +2,7 @@
 //! point, its first and second derivatives for 0, 1 or 2 parameters, and an outward direction.
 
 use geom_param::{
-    Boundary, DPose3, DVec3, FeatureLocation, ParamRange, ParamSide, Solid, SurfacePoint,
+    Boundary, DPose3, DVec3, FaceId, FeatureLocation, ParamRange, ParamSide, Solid, SurfacePoint,
 };
 use glam::DMat3;
 
@@ -16,6 +16,10 @@ pub(crate) enum Body<'a> {
         solid: &'a Solid,
         /// Its pose in A's frame.
         frame: Frame,
+        /// Where re-entry from an edge or vertex may go: any face (`None`), or only this face,
+        /// its edges and vertices (a solve kept on its seed's face, see
+        /// `newton_refiner::on_seed_faces`).
+        within: Option<FaceId>,
     },
     /// A fixed point in A's frame (no parameters).
     Point(DVec3),
@@ -167,7 +171,7 @@ impl Body<'_> {
                 point: *p,
                 ..FeatureEval::default()
             },
-            (Self::Solid { solid, frame }, Some(location)) => {
+            (Self::Solid { solid, frame, .. }, Some(location)) => {
                 let r = |v: DVec3| frame.vector(v);
                 match *location {
                     FeatureLocation::Face { id, u, v } => {
@@ -219,7 +223,7 @@ impl Body<'_> {
     /// an apex minus the mean of the faces' inward tangents. `None` for a fixed point or where
     /// none of these exists.
     pub fn outward(&self, loc: &Loc) -> Option<DVec3> {
-        let (Self::Solid { solid, frame }, Some(location)) = (self, loc) else {
+        let (Self::Solid { solid, frame, .. }, Some(location)) = (self, loc) else {
             return None;
         };
         let local = match *location {

@@ -6,7 +6,8 @@ use crate::feature_eval::{
     Body, Loc, LocalFacePoint, inward_tangent, side_of, side_params, vertex_sides, wrap,
 };
 use geom_param::{
-    Boundary, DVec2, DVec3, EdgeUse, FeatureLocation, ParamRange, ParamSide, SurfacePoint,
+    Boundary, DVec2, DVec3, EdgeId, EdgeUse, FaceId, FeatureLocation, ParamRange, ParamSide, Solid,
+    SurfacePoint,
 };
 
 /// Samples of the running parameter tried when leaving a vertex into a face: the best one is
@@ -135,6 +136,7 @@ fn settle_trimmed(
         &Body::Solid {
             solid,
             frame: crate::feature_eval::Frame::identity(),
+            within: None,
         },
         edge_loc,
     )
@@ -293,13 +295,15 @@ pub(crate) fn onto_nearest_edge(body: &Body, loc: Loc) -> Loc {
 /// parameter span inside the side the edge runs along (at the edge's parameter); empty
 /// otherwise. Starts for a solve that failed on the edge itself.
 pub(crate) fn into_faces(body: &Body, loc: Loc) -> Vec<Loc> {
-    let (Body::Solid { solid, .. }, Some(FeatureLocation::Edge { id, t })) = (body, loc) else {
+    let (Body::Solid { solid, within, .. }, Some(FeatureLocation::Edge { id, t })) = (body, loc)
+    else {
         return Vec::new();
     };
     solid
         .edge(id)
         .uses
         .iter()
+        .filter(|use_| within.is_none_or(|f| use_.face == f))
         .map(|use_| {
             let domain = solid.face(use_.face).surface.domain();
             let [u0, v0] = solid.use_params(use_, t);
@@ -322,11 +326,22 @@ pub(crate) fn into_faces(body: &Body, loc: Loc) -> Vec<Loc> {
 /// direction makes the largest angle-cosine with `pull` (the direction, in A's frame, in which
 /// moving the point decreases the objective), if that component exceeds `threshold` (mm).
 pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Loc {
-    let (Body::Solid { solid, frame }, Some(location)) = (body, loc) else {
+    let (
+        Body::Solid {
+            solid,
+            frame,
+            within,
+        },
+        Some(location),
+    ) = (body, loc)
+    else {
         return None;
     };
     let mut best: Option<(f64, FeatureLocation)> = None;
     let mut offer = |tangent: DVec3, loc: FeatureLocation| {
+        if within.is_some_and(|f| !on_closure(solid, &loc, f)) {
+            return;
+        }
         let score = pull.dot(frame.vector(tangent).normalize_or_zero());
         if score > threshold && best.is_none_or(|(s, _)| score > s) {
             best = Some((score, loc));
@@ -417,4 +432,18 @@ pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Lo
         FeatureLocation::Face { .. } => {}
     }
     best.map(|(_, l)| l)
+}
+
+/// Whether `location` is on face `face` or on its boundary (an edge with a use on it, a vertex
+/// that such an edge ends at or that the face collapses into).
+pub(crate) fn on_closure(solid: &Solid, location: &FeatureLocation, face: FaceId) -> bool {
+    let edge_on = |e: EdgeId| solid.edge(e).uses.iter().any(|u| u.face == face);
+    match *location {
+        FeatureLocation::Face { id, .. } => id == face,
+        FeatureLocation::Edge { id, .. } => edge_on(id),
+        FeatureLocation::Vertex { id } => {
+            let vertex = solid.vertex(id);
+            vertex.faces.contains(&face) || vertex.edges.iter().any(|&e| edge_on(e))
+        }
+    }
 }

@@ -242,15 +242,15 @@ impl State {
         }
     }
 
-    /// The same state with the tangential part of the features' second derivatives left out of
-    /// the scaled Hessian: H_ij − s_i d_t · ∂²P/∂x_i∂x_j on each side's block, d_t the part of
-    /// the connecting vector in that side's tangent space (s_i = +1 on A, −1 on B). It is the
-    /// model of f along a step whose tangential second-order displacement is cancelled
+    /// The scaled Hessian with the tangential part of the features' second derivatives left
+    /// out: H_ij − s_i d_t · ∂²P/∂x_i∂x_j on each side's block, d_t the part of the connecting
+    /// vector in that side's tangent space (s_i = +1 on A, −1 on B). It is the model of f along
+    /// a step whose tangential second-order displacement is cancelled
     /// ([`tangential_correction`]): the point then moves along the linear prediction plus the
     /// normal part of ½ Σ ∂²P Δx Δx, so only d's normal part meets the second derivatives. At a
     /// stationary pair d_t is the residual and the two Hessians agree.
-    fn normal_model(&self) -> Self {
-        let mut out = *self;
+    fn normal_hessian(&self) -> [[f64; 4]; 4] {
+        let mut out = self.hs;
         for (offset, e, sign) in [(0, &self.ea, 1.0), (self.na, &self.eb, -1.0)] {
             let Some(d_t) = tangential_part(e, self.d) else {
                 continue;
@@ -258,8 +258,7 @@ impl State {
             for i in 0..e.n {
                 for j in 0..e.n {
                     let (gi, gj) = (offset + i, offset + j);
-                    out.hs[gi][gj] -=
-                        sign * d_t.dot(e.dd[i][j]) / (self.speed[gi] * self.speed[gj]);
+                    out[gi][gj] -= sign * d_t.dot(e.dd[i][j]) / (self.speed[gi] * self.speed[gj]);
                 }
             }
         }
@@ -892,9 +891,7 @@ fn minimize_known(
         let n = cur.n;
         // The distance step's model: f's Hessian with only the normal part of the features'
         // curvature, consistent with the tangentially corrected step it takes below.
-        let distance_step = distance_ok
-            .then(|| distance_newton_step(&cur.normal_model()))
-            .flatten();
+        let distance_step = distance_ok.then(|| distance_newton_step(&cur)).flatten();
         let by_distance = distance_step.is_some();
         let mut step = match distance_step.or_else(|| newton_step(&cur)) {
             Some(step) => step,
@@ -991,7 +988,8 @@ fn distance_newton_step_n<const N: usize>(cur: &State) -> Option<[f64; 4]> {
     if !(distance2 > (cur.gradient_floor() * 1e3).powi(2) && tangential2 <= 0.25 * distance2) {
         return None;
     }
-    let mut m = cur.hs;
+    // The model consistent with the tangentially corrected step taken with it.
+    let mut m = cur.normal_hessian();
     for i in 0..n {
         for j in 0..n {
             m[i][j] -= cur.gs[i] * cur.gs[j] / distance2;
@@ -1064,7 +1062,7 @@ fn tangential_part(e: &FeatureEval, d: DVec3) -> Option<DVec3> {
 /// second-order displacement q = ½ Σ ∂²P/∂x_i∂x_j Δx_i Δx_j has its tangential part removed by
 /// the parameter change −G⁻¹ Jᵀ q (J the side's columns ∂P/∂x_i, G = JᵀJ its first fundamental
 /// form); its normal part, the surface's curvature, is what the step's model
-/// ([`State::normal_model`]) holds. A side whose G is singular (a pole) keeps its step. Taken
+/// ([`State::normal_hessian`]) holds. A side whose G is singular (a pole) keeps its step. Taken
 /// with the distance-Newton steps of a pair solve (near the answer: the connecting vector
 /// within 30 degrees of the normals), where the model is the distance's along the rolling
 /// directions; far steps and projections onto a point keep their plain steps.

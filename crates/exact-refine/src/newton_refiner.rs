@@ -2,7 +2,8 @@
 
 use crate::crossing_probe::overlap_near;
 use crate::diagnostics::{diagnose, gap_within_error};
-use crate::feature_eval::{Body, Frame};
+use crate::feature_eval::{Body, Frame, Loc};
+use crate::feature_switch::on_closure;
 use crate::newton::{Outcome, Solution, State, retry_on_sides, solve};
 use crate::options::NewtonOptions;
 use crate::penetration::solve_penetration;
@@ -46,10 +47,12 @@ impl Refiner for NewtonRefiner {
         let body_a = Body::Solid {
             solid: a,
             frame: Frame::new(&DPose3::IDENTITY),
+            within: None,
         };
         let body_b = Body::Solid {
             solid: b,
             frame: Frame::new(pose_ab),
+            within: None,
         };
         let base = pose_ab.translation.length();
         let options = &self.options;
@@ -84,6 +87,15 @@ impl Refiner for NewtonRefiner {
             .la;
         }
         let solution = solve(&body_a, &body_b, la, lb, base, options);
+        let solution = on_seed_faces(
+            &body_a,
+            &body_b,
+            (start_a, start_b),
+            (la, lb),
+            solution,
+            base,
+            options,
+        );
         let (solution, distance, normal, diagnostics) =
             check_touch(&body_a, &body_b, solution, base, options);
         let state = &solution.state;
@@ -96,6 +108,82 @@ impl Refiner for NewtonRefiner {
             normal,
             diagnostics,
         }
+    }
+}
+
+/// The minimum of the seed's own pair of faces, when the pair solve from it (`solution`)
+/// left a seed face and another minimum lies on it: Stage 2 seeds every close pair of
+/// components, so a minimum of the seed's pair that Newton walked past, across a smooth
+/// joint into a neighbouring face with a lower minimum, has no other seed (a loft's rim over
+/// a goblet's lip: two minima 0.9 mm apart on either side of the lip's joint, one seed each,
+/// both solves ended in the lower one).
+///
+/// When either side of `solution` ended off the closure of its seed face (`seeds`: the seed
+/// locations; the face itself, its edges and vertices), the pair is solved again from the
+/// projected `starts` with re-entry kept on the seed faces (`Body::Solid::within`), and that
+/// answer is polished without the restriction: if it stays on the seed faces' closures and
+/// converges, it is a local minimum of the distance over both whole solids (an end on a seed
+/// face's boundary that is no minimum of the union slides off in the polish), and it is the
+/// answer. Otherwise `solution` is.
+fn on_seed_faces(
+    a: &Body,
+    b: &Body,
+    seeds: (FeatureLocation, FeatureLocation),
+    starts: (Loc, Loc),
+    solution: Solution,
+    base: f64,
+    options: &NewtonOptions,
+) -> Solution {
+    let (
+        (
+            Body::Solid {
+                solid: sa,
+                frame: fa,
+                ..
+            },
+            FeatureLocation::Face { id: face_a, .. },
+        ),
+        (
+            Body::Solid {
+                solid: sb,
+                frame: fb,
+                ..
+            },
+            FeatureLocation::Face { id: face_b, .. },
+        ),
+    ) = ((a, seeds.0), (b, seeds.1))
+    else {
+        return solution;
+    };
+    let on_seed = |state: &State| {
+        state.la.is_some_and(|l| on_closure(sa, &l, face_a))
+            && state.lb.is_some_and(|l| on_closure(sb, &l, face_b))
+    };
+    if on_seed(&solution.state) {
+        return solution;
+    }
+    let kept_a = Body::Solid {
+        solid: sa,
+        frame: *fa,
+        within: Some(face_a),
+    };
+    let kept_b = Body::Solid {
+        solid: sb,
+        frame: *fb,
+        within: Some(face_b),
+    };
+    let kept = solve(&kept_a, &kept_b, starts.0, starts.1, base, options);
+    if kept.outcome != Outcome::Converged || !on_seed(&kept.state) {
+        return solution;
+    }
+    let polished = solve(a, b, kept.state.la, kept.state.lb, base, options);
+    if polished.outcome != Outcome::Converged || !on_seed(&polished.state) {
+        return solution;
+    }
+    let iterations = solution.iterations + kept.iterations + polished.iterations;
+    Solution {
+        iterations,
+        ..polished
     }
 }
 
