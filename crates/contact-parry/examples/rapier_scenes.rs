@@ -64,9 +64,10 @@
 //! change after the first second). The likely mechanism: each contact is held at its
 //! start-of-step point and normal for the whole step while the true contact rolls along the
 //! body, so a body on a stable (concave-up) path ends each step slightly inside the surface,
-//! and the position correction lifts it out without taking the matching kinetic energy. Hence 240 steps a second (anti-damping 0.14/s for the vase), and 8 s for
-//! the ball, whose rest threshold on spin (0.02 rad/s, 0.12 mm/s at its surface) its damping
-//! reaches after about 6.5 s. The rest test itself is unchanged.
+//! and the position correction lifts it out without taking the matching kinetic energy.
+//! Hence 240 steps a second (anti-damping 0.14/s for the vase), and 8 s for the ball, whose
+//! rest threshold on spin (0.02 rad/s, 0.12 mm/s at its surface) its damping reaches after
+//! about 6.5 s. The rest test itself is unchanged.
 
 use contact_parry::{BeyondReach, DispatcherOptions, ExactDispatcher, ExactShape};
 use contact_pipeline::{ContactOptions, ContactPipeline, PairState, QueryScratch};
