@@ -112,7 +112,7 @@ pub(crate) fn cone_path(
             .traversal
             .leaves
             .iter()
-            .filter(|l| l.lower <= 0.0)
+            .filter(|l| l.meshes_may_meet)
             .filter_map(|l| triangle_pair(tree_a, tree_b, l.a, l.b)),
     );
     scratch.candidates.sort_unstable();
@@ -162,7 +162,7 @@ pub(crate) fn cone_path(
     let first_leaf = found.len();
     for leaf in traversal.leaves.iter().filter(|l| l.critical) {
         if let Some(pair) = triangle_pair(tree_a, tree_b, leaf.a, leaf.b) {
-            if leaf.lower <= 0.0 && out.penetrating_pairs.contains(&pair) {
+            if leaf.meshes_may_meet && out.penetrating_pairs.contains(&pair) {
                 continue;
             }
         }
