@@ -160,6 +160,10 @@ pub(crate) fn cone_path(
     // below (its radius is at least its balls'), so it is skipped before its closest points are
     // computed.
     let first_leaf = found.len();
+    // Nearest pairs first: their candidates, made first, cover the pairs around them.
+    traversal
+        .leaves
+        .sort_unstable_by(|x, y| x.lower.total_cmp(&y.lower));
     for leaf in traversal.leaves.iter().filter(|l| l.critical) {
         if let Some(pair) = triangle_pair(tree_a, tree_b, leaf.a, leaf.b) {
             if leaf.meshes_may_meet && out.penetrating_pairs.contains(&pair) {
