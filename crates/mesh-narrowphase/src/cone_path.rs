@@ -56,6 +56,9 @@ struct Found {
     /// their third-order error, which the factor of four between this radius and
     /// [`MODEL_MERGE`]'s covers).
     outside: Option<f64>,
+    /// A leaf pair's candidate: superseded by a lower one of a neighbouring leaf pair
+    /// ([`superseded`]).
+    leaf: bool,
     source: Source,
 }
 
@@ -112,7 +115,7 @@ pub(crate) fn cone_path(
             .traversal
             .leaves
             .iter()
-            .filter(|l| l.lower <= 0.0)
+            .filter(|l| l.meshes_may_meet)
             .filter_map(|l| triangle_pair(tree_a, tree_b, l.a, l.b)),
     );
     scratch.candidates.sort_unstable();
@@ -160,9 +163,13 @@ pub(crate) fn cone_path(
     // below (its radius is at least its balls'), so it is skipped before its closest points are
     // computed.
     let first_leaf = found.len();
+    // Nearest pairs first: their candidates, made first, cover the pairs around them.
+    traversal
+        .leaves
+        .sort_unstable_by(|x, y| x.lower.total_cmp(&y.lower));
     for leaf in traversal.leaves.iter().filter(|l| l.critical) {
         if let Some(pair) = triangle_pair(tree_a, tree_b, leaf.a, leaf.b) {
-            if leaf.lower <= 0.0 && out.penetrating_pairs.contains(&pair) {
+            if leaf.meshes_may_meet && out.penetrating_pairs.contains(&pair) {
                 continue;
             }
         }
@@ -229,7 +236,7 @@ pub(crate) fn cone_path(
             });
             near || inside
         });
-        if duplicate {
+        if duplicate || superseded(&found[..i], f) {
             continue;
         }
         let seed = match f.source {
@@ -253,6 +260,23 @@ pub(crate) fn cone_path(
     } else {
         MeshVerdict::Seeds
     }
+}
+
+/// Whether the leaf pair's candidate `f` is not a local minimum of the distance between leaf
+/// pairs: an earlier candidate of `earlier` (sorted by distance) from a neighbouring leaf pair
+/// (points within the sum of the two candidates' radii on both sides, so that the pairs' balls
+/// meet on both sides) is strictly closer. Along a valley of the distance every candidate but
+/// the lowest has such a neighbour, so the valley gets one seed; two minima keep a seed each, as
+/// the distance rises between them (up to the leaves' resolution, as for [`Found::radius`]).
+fn superseded(earlier: &[Found], f: &Found) -> bool {
+    f.leaf
+        && earlier.iter().any(|g| {
+            let r = f.radius + g.radius;
+            g.leaf
+                && g.rank.1 < f.rank.1
+                && g.point_a.distance(f.point_a) <= r
+                && g.point_b.distance(f.point_b) <= r
+        })
 }
 
 /// The mesh triangles of a leaf pair.
@@ -346,6 +370,7 @@ fn predict(na: &PatchNode, nb: &PatchNode, frame: &PairFrame) -> Option<Found> {
         point_b: lift(&hb),
         radius: MODEL_MERGE * na.radius.min(nb.radius),
         outside: clamped.then_some(na.radius.min(nb.radius)),
+        leaf: false,
         source: Source::Certified,
     })
 }
@@ -506,6 +531,7 @@ fn leaf_seed(
         point_b: pair.b.point,
         radius,
         outside: None,
+        leaf: true,
         source: Source::Made(seed),
     })
 }
@@ -560,6 +586,7 @@ fn apex_seed(
         point_b,
         radius: tree.nodes[node as usize].radius,
         outside: None,
+        leaf: false,
         source: Source::Made(seed),
     })
 }
@@ -582,6 +609,7 @@ fn apex_pair(
         point_b: pb,
         radius: 0.0,
         outside: None,
+        leaf: false,
         source: Source::Made(Seed {
             a: SeedPoint {
                 component: side_a.component,

@@ -29,6 +29,9 @@ pub struct StopPair {
     pub lower: f64,
     /// The normal cones allow a critical pair here.
     pub critical: bool,
+    /// The two nodes' mesh pieces may intersect: their volumes shrunk by their
+    /// [`PatchNode::mesh_inset`]s overlap.
+    pub meshes_may_meet: bool,
 }
 
 /// A node pair where a traversal stopped, kept for the next query of the same pair
@@ -257,7 +260,8 @@ fn directions(d: DVec3, length: f64, radii: f64) -> NormalCone {
 /// Traverses `tree_a` against `tree_b` (B's tree posed by `frame` in A's frame) and fills
 /// `out` with the certified node pairs and the leaf pairs left, dropping every node pair
 /// - whose volumes are farther apart than `reach` (mm), or
-/// - whose volumes do not overlap and whose normal cones rule out both kinds of critical pair
+/// - whose meshes cannot intersect (their volumes shrunk by their [`PatchNode::mesh_inset`]s
+///   do not overlap) and whose normal cones rule out both kinds of critical pair
 ///   ([`CriticalKinds`]).
 ///
 /// A pair that may hold a critical pair and is [`certifiable`] stops there; otherwise the node
@@ -309,8 +313,11 @@ pub fn traverse(
             kinds = kinds.with_bands((&a.cone, &a.band), (&cone_b, &band_b), &towards_b);
         }
         let critical = kinds.any();
+        // The meshes lie in the volumes shrunk by their insets (exact triangle tests are only
+        // needed where those overlap).
+        let inset = a.mesh_inset + b.mesh_inset;
         // Disjoint balls and no critical pair: nothing to find here.
-        if !critical && length > radii {
+        if !critical && length + inset > radii {
             out.front.push(stopped(-1.0));
             continue;
         }
@@ -320,7 +327,8 @@ pub fn traverse(
             out.front.push(stopped(lower - reach - moved));
             continue;
         }
-        if !critical && lower > 0.0 {
+        let meshes_may_meet = lower + inset <= 0.0;
+        if !critical && !meshes_may_meet {
             out.front.push(stopped(-1.0));
             continue;
         }
@@ -329,6 +337,7 @@ pub fn traverse(
             b: j,
             lower,
             critical,
+            meshes_may_meet,
         };
         if critical && certifiable(a, b, axis_b, &frame.rotation) {
             out.certified.push(stop);

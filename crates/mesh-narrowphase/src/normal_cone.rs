@@ -231,6 +231,10 @@ pub struct NormalBand {
     pub lo: f64,
     /// Largest angle (rad) from the axis.
     pub hi: f64,
+    /// cos `lo` (kept so that the tests need no trigonometry).
+    pub cos_lo: f64,
+    /// cos `hi`.
+    pub cos_hi: f64,
 }
 
 impl NormalBand {
@@ -239,31 +243,64 @@ impl NormalBand {
         axis: DVec3::Z,
         lo: 0.0,
         hi: std::f64::consts::PI,
+        cos_lo: 1.0,
+        cos_hi: -1.0,
     };
 
-    /// The band about `axis` containing every cap of `cones` (each cap's axis at its angle from
-    /// `axis`, widened by the cap's half-angle). [`NormalBand::ALL`] for a zero axis or a cap
-    /// that is the whole sphere.
+    /// The band `lo <= angle(n, axis) <= hi` (rad, clamped to [0, π]) about the unit `axis`.
     #[must_use]
-    pub fn around(axis: DVec3, cones: impl Iterator<Item = NormalCone>) -> Self {
+    pub fn new(axis: DVec3, lo: f64, hi: f64) -> Self {
+        let (lo, hi) = (lo.max(0.0), hi.min(std::f64::consts::PI));
+        Self {
+            axis,
+            lo,
+            hi,
+            cos_lo: lo.cos(),
+            cos_hi: hi.cos(),
+        }
+    }
+
+    /// The band about `axis` containing every item of `items`, each given by a cap and a band
+    /// that both contain its normals (either may be the whole sphere): the angles from `axis`
+    /// within the cap, [φ - θ, φ + θ] with φ the angle between the axes, intersected with those
+    /// within the band, [lo - δ, hi + δ] with δ the angle between the band's axis (turned to
+    /// `axis`'s side, a band about -b being one about b with angles π - hi..π - lo) and `axis`.
+    /// [`NormalBand::ALL`] for a zero axis or an item known by neither.
+    #[must_use]
+    pub fn around_items(
+        axis: DVec3,
+        items: impl Iterator<Item = (NormalCone, NormalBand)>,
+    ) -> Self {
         let Some(axis) = axis.try_normalize() else {
             return Self::ALL;
         };
-        let (mut lo, mut hi) = (std::f64::consts::PI, 0.0_f64);
-        for c in cones {
-            if c.is_all() {
+        let pi = std::f64::consts::PI;
+        let (mut lo, mut hi) = (pi, 0.0_f64);
+        for (cap, band) in items {
+            let (mut item_lo, mut item_hi) = (0.0, pi);
+            if !cap.is_all() {
+                let phi = axis.dot(cap.axis).clamp(-1.0, 1.0).acos();
+                let theta = cap.half_angle();
+                (item_lo, item_hi) = (phi - theta, phi + theta);
+            }
+            if !band.is_all() {
+                let cos = axis.dot(band.axis).clamp(-1.0, 1.0);
+                let (b_lo, b_hi) = if cos >= 0.0 {
+                    (band.lo, band.hi)
+                } else {
+                    (pi - band.hi, pi - band.lo)
+                };
+                let delta = cos.abs().min(1.0).acos();
+                item_lo = f64::max(item_lo, b_lo - delta);
+                item_hi = f64::min(item_hi, b_hi + delta);
+            }
+            if cap.is_all() && band.is_all() {
                 return Self::ALL;
             }
-            let angle = axis.dot(c.axis).clamp(-1.0, 1.0).acos();
-            let width = c.half_angle();
-            lo = lo.min(angle - width);
-            hi = hi.max(angle + width);
+            lo = lo.min(item_lo);
+            hi = hi.max(item_hi);
         }
-        Self {
-            axis,
-            lo: lo.max(0.0),
-            hi: hi.min(std::f64::consts::PI),
-        }
+        Self::new(axis, lo, hi)
     }
 
     /// Whether the band says nothing (it covers every direction).
@@ -300,16 +337,125 @@ impl NormalBand {
     }
 
     /// Whether the band shares a direction with the cap: the angles from the band's axis within
-    /// the cap, [φ - θ, φ + θ] with φ the angle between the axes, meet [lo, hi].
+    /// the cap, [φ - θ, φ + θ] with φ the angle between the axes, meet [lo, hi]. Compared
+    /// through cosines (cos is decreasing on [0, π]): φ - θ <= hi holds when φ <= θ or
+    /// cos(φ - θ) >= cos hi, and φ + θ >= lo when φ + θ >= π (sin(φ + θ) < 0) or
+    /// cos(φ + θ) <= cos lo.
     #[must_use]
     pub fn meets(&self, cap: &NormalCone) -> bool {
         if self.is_all() || cap.is_all() {
             return true;
         }
-        let phi = self.axis.dot(cap.axis).clamp(-1.0, 1.0).acos();
-        let theta = cap.half_angle();
-        // The slack covers the rounding of the two acos (about 1e-16 rad each).
-        phi - theta <= self.hi + 1e-12 && phi + theta >= self.lo - 1e-12
+        let c = self.axis.dot(cap.axis).clamp(-1.0, 1.0);
+        let s = (1.0 - c * c).sqrt();
+        // Rounding of unit vectors and products (about 1e-16), with a wide margin: the test
+        // may only err towards meeting.
+        let slack = COSINE_SLACK;
+        let below_hi = c >= cap.cos || c * cap.cos + s * cap.sin >= self.cos_hi - slack;
+        let above_lo =
+            s * cap.cos + c * cap.sin < 0.0 || c * cap.cos - s * cap.sin <= self.cos_lo + slack;
+        below_hi && above_lo
+    }
+}
+
+/// Where the directions shared by two bands lie ([`NormalBand::shared`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SharedDirections {
+    /// The bands share no direction.
+    None,
+    /// Every shared direction lies in one of these two caps.
+    Within([NormalCone; 2]),
+    /// No useful bound: the shared directions may lie anywhere.
+    Anywhere,
+}
+
+/// Largest cap half-angle (rad) worth reporting as [`SharedDirections::Within`]: wider, the two
+/// caps say little beyond the bands themselves.
+const SHARED_CAP_LIMIT: f64 = 1.2;
+
+impl NormalBand {
+    /// Where the directions lying in both bands are (Hanniel & Elber's single-root tests bound
+    /// normals the same way: two thin bands about distinct axes meet in two small regions).
+    ///
+    /// With a1, a2 the axes (angle φ, c = cos φ, s = sin φ) and the orthonormal basis
+    /// e1 = a1, e2 = (a2 - c a1)/s, u = a1 × a2 / s, a direction n = x e1 + y e2 + z u lies in
+    /// both bands when x = n · a1 ∈ [cos hi1, cos lo1] and n · a2 = c x + s y ∈ [cos hi2,
+    /// cos lo2]: (x, y) lies in a parallelogram P, inside the disc of centre p0 (P's centre)
+    /// and radius ρ (its farthest corner), and z = ±√(1 - x² - y²). On that disc (when
+    /// |p0| + ρ < 1) the lift p ↦ (p, ±√(1 - |p|²)) is Lipschitz with constant
+    /// L = 1/√(1 - (|p0| + ρ)²) (the norm of its derivative), so n lies within the chord L ρ of
+    /// n± = (p0, ±√(1 - |p0|²)): in the caps about n± of chord L ρ (half-angle
+    /// 2 asin(L ρ / 2)).
+    ///
+    /// Axes closer to parallel than 1e-9 rad compare their angle ranges only; either band being
+    /// the whole sphere, or caps wider than 1.2 rad, give [`SharedDirections::Anywhere`].
+    #[must_use]
+    pub fn shared(&self, other: &Self) -> SharedDirections {
+        if self.is_all() || other.is_all() {
+            return SharedDirections::Anywhere;
+        }
+        let (a1, a2) = (self.axis, other.axis);
+        let c = a1.dot(a2).clamp(-1.0, 1.0);
+        let cross = a1.cross(a2);
+        let s = cross.length();
+        // Rounding of the cosines below (about 1e-16 each) with a wide margin.
+        let slack = 1e-12;
+        let (x_lo, x_hi) = (self.cos_hi - slack, self.cos_lo + slack);
+        let (q_lo, q_hi) = (other.cos_hi - slack, other.cos_lo + slack);
+        if s <= 1e-9 || !s.is_finite() {
+            // (Anti)parallel axes: n · a2 = ±n · a1 up to s; the ranges of n · a1 must meet.
+            let (b_lo, b_hi) = if c >= 0.0 {
+                (q_lo, q_hi)
+            } else {
+                (-q_hi, -q_lo)
+            };
+            let meet = x_lo.max(b_lo) <= x_hi.min(b_hi) + 2.0 * s;
+            return if meet {
+                SharedDirections::Anywhere
+            } else {
+                SharedDirections::None
+            };
+        }
+        let u = cross / s;
+        let e2 = (a2 - a1 * c) / s;
+        let y_of = |x: f64, q: f64| (q - c * x) / s;
+        let x0 = 0.5 * (x_lo + x_hi);
+        let y0 = y_of(x0, 0.5 * (q_lo + q_hi));
+        let rho = [(x_lo, q_lo), (x_lo, q_hi), (x_hi, q_lo), (x_hi, q_hi)]
+            .into_iter()
+            .map(|(x, q)| {
+                let (dx, dy) = (x - x0, y_of(x, q) - y0);
+                dx * dx + dy * dy
+            })
+            .fold(0.0, f64::max)
+            .sqrt();
+        let m = (x0 * x0 + y0 * y0).sqrt();
+        let reach = m + rho;
+        if reach >= 1.0 || reach.is_nan() {
+            return SharedDirections::Anywhere;
+        }
+        // The cap of chord k about n±: cos = 1 - k²/2, sin = k √(1 - k²/4).
+        let chord = rho / (1.0 - reach * reach).sqrt();
+        let cos = 1.0 - 0.5 * chord * chord;
+        if cos < SHARED_CAP_LIMIT.cos() || cos.is_nan() {
+            return SharedDirections::Anywhere;
+        }
+        let sin = chord * (1.0 - 0.25 * chord * chord).max(0.0).sqrt();
+        let z0 = (1.0 - m * m).max(0.0).sqrt();
+        let p = a1 * x0 + e2 * y0;
+        // p ⟂ u and |p|² + z0² = 1: both centres are unit vectors.
+        SharedDirections::Within([
+            NormalCone {
+                axis: p + u * z0,
+                cos,
+                sin,
+            },
+            NormalCone {
+                axis: p - u * z0,
+                cos,
+                sin,
+            },
+        ])
     }
 }
 
@@ -330,7 +476,7 @@ impl CriticalKinds {
         let minus_b = b.negated();
         let (minus_band_a, minus_band_b) = (band_a.negated(), band_b.negated());
         let shared = band_a.meets(&minus_b) && minus_band_b.meets(a);
-        Self {
+        let mut kinds = Self {
             separated: self.separated
                 && shared
                 && band_a.meets(directions)
@@ -339,7 +485,34 @@ impl CriticalKinds {
                 && shared
                 && minus_band_a.meets(directions)
                 && band_b.meets(directions),
+        };
+        if !kinds.any() {
+            return kinds;
         }
+        // A separated minimum's direction d lies in band A and in -band B (n_B = -d); a
+        // penetration witness's in -band A and band B, the opposite set. Where the two bands
+        // meet only in two small caps, d must also lie in one of them.
+        match band_a.shared(&minus_band_b) {
+            SharedDirections::None => {
+                kinds.separated = false;
+                kinds.penetrating = false;
+            }
+            SharedDirections::Within(caps) => {
+                let possible = |cap: &NormalCone, sign: f64| {
+                    let cap = if sign > 0.0 { *cap } else { cap.negated() };
+                    let (na, nb) = if sign > 0.0 {
+                        (*a, minus_b)
+                    } else {
+                        (a.negated(), *b)
+                    };
+                    cap.meets(&na) && cap.meets(&nb) && cap.meets(directions)
+                };
+                kinds.separated &= caps.iter().any(|c| possible(c, 1.0));
+                kinds.penetrating &= caps.iter().any(|c| possible(c, -1.0));
+            }
+            SharedDirections::Anywhere => {}
+        }
+        kinds
     }
 }
 
@@ -373,6 +546,131 @@ mod tests {
                         }
                     }
                 }
+            }
+        }
+    }
+
+    fn band(axis: DVec3, lo: f64, hi: f64) -> NormalBand {
+        NormalBand::new(axis.normalize(), lo, hi)
+    }
+
+    /// Whether `n` lies in the band, by its definition (angles through acos).
+    fn in_band(b: &NormalBand, n: DVec3) -> bool {
+        let a = b.axis.angle_between(n);
+        a >= b.lo - 1e-12 && a <= b.hi + 1e-12
+    }
+
+    /// Bands against caps by their definition (the angles from the band's axis within the cap,
+    /// [φ - θ, φ + θ], meet [lo, hi]; computed here with acos, where the test uses cosines): they
+    /// meet when those intervals overlap and do not when they miss by more than 1e-5 rad.
+    #[test]
+    fn bands_meet_caps_as_their_angles_say() {
+        let ranges = [
+            (0.0, 0.3),
+            (1.2, 1.9),
+            (1.5, 1.5002),
+            (2.5, std::f64::consts::PI),
+            (0.4, 0.41),
+        ];
+        let angles = [0.0, 0.2, 1.0, 2.0];
+        let axes = [
+            DVec3::Z,
+            DVec3::X,
+            -DVec3::Z,
+            DVec3::new(1.0, 1.0, 0.3).normalize(),
+            DVec3::new(-0.2, 1.0, 0.7).normalize(),
+        ];
+        for &(lo, hi) in &ranges {
+            for &t in &angles {
+                for &a1 in &axes {
+                    for &a2 in &axes {
+                        let (b, c) = (band(a1, lo, hi), NormalCone::new(a2, t));
+                        let phi = a1.angle_between(a2);
+                        let gap = (phi - t - hi).max(lo - (phi + t));
+                        if gap <= 0.0 {
+                            assert!(b.meets(&c), "{lo} {hi} {t} {a1} {a2}");
+                        } else if gap > 1e-5 {
+                            assert!(!b.meets(&c), "{lo} {hi} {t} {a1} {a2}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Every direction in both of two bands, found by brute force (a dense sampling of the
+    /// first band's rings, kept where it lies in the second by the definition), lies in one of
+    /// the caps [`NormalBand::shared`] returns; `None` only when no sample is shared. Thin rings
+    /// about axes tilted by φ share two small caps about ±(a1 × a2) of half-angle about
+    /// (w1 + w2) / sin φ, w the rings' half-widths.
+    #[test]
+    fn shared_directions_hold_every_direction_in_both_bands() {
+        let half = std::f64::consts::FRAC_PI_2;
+        let tilted = |phi: f64| DVec3::new(phi.sin(), 0.0, phi.cos());
+        let cases = [
+            (
+                band(DVec3::Z, half - 1e-3, half + 1e-3),
+                band(tilted(0.02), half - 2e-3, half + 2e-3),
+            ),
+            (
+                band(DVec3::Z, half - 1e-6, half + 1e-6),
+                band(tilted(0.3), half - 1e-6, half + 1e-6),
+            ),
+            (band(DVec3::Z, 0.7, 0.75), band(tilted(1.0), 1.2, 1.3)),
+            (band(DVec3::Z, 0.7, 0.75), band(tilted(0.1), 1.2, 1.3)),
+            (band(DVec3::Z, 0.7, 0.75), band(-DVec3::Z, 0.1, 0.2)),
+            (band(DVec3::Z, 0.7, 0.75), band(-DVec3::Z, 2.3, 2.5)),
+            (
+                band(DVec3::new(0.3, -0.5, 0.8), 1.0, 1.6),
+                band(DVec3::new(-0.6, 0.1, 0.2), 0.2, 0.9),
+            ),
+            (
+                band(DVec3::X, half - 0.05, half + 0.05),
+                band(DVec3::Y, half - 0.05, half + 0.05),
+            ),
+        ];
+        for (k, (b1, b2)) in cases.iter().enumerate() {
+            let shared = b1.shared(b2);
+            let (e1, e2) = b1.axis.any_orthonormal_pair();
+            let mut found = 0;
+            for i in 0..=8 {
+                let t = b1.lo + (b1.hi - b1.lo) * f64::from(i) / 8.0;
+                for j in 0..20_000 {
+                    let p = std::f64::consts::TAU * f64::from(j) / 20_000.0;
+                    let n = (e1 * p.cos() + e2 * p.sin()) * t.sin() + b1.axis * t.cos();
+                    if !in_band(b2, n) {
+                        continue;
+                    }
+                    found += 1;
+                    match shared {
+                        SharedDirections::None => panic!("case {k}: {n} is shared"),
+                        SharedDirections::Within(caps) => assert!(
+                            caps.iter()
+                                .any(|c| c.axis.angle_between(n) <= c.half_angle() + 1e-9),
+                            "case {k}: {n} outside {caps:?}"
+                        ),
+                        SharedDirections::Anywhere => {}
+                    }
+                }
+            }
+            if k < 2 {
+                assert!(found > 0, "case {k}");
+                let (w, phi) = if k == 0 {
+                    (3e-3, 0.02_f64)
+                } else {
+                    (2e-6, 0.3_f64)
+                };
+                let SharedDirections::Within(caps) = shared else {
+                    panic!("case {k}: {shared:?}");
+                };
+                let pole = b1.axis.cross(b2.axis).normalize();
+                for c in caps {
+                    assert!(c.half_angle() <= 1.5 * w / phi.sin(), "case {k}: {c:?}");
+                    assert!(c.axis.cross(pole).length() <= 1e-9, "case {k}: {c:?}");
+                }
+            }
+            if k == 4 {
+                assert_eq!(shared, SharedDirections::None);
             }
         }
     }

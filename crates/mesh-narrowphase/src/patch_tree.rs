@@ -47,8 +47,10 @@ pub struct PatchNode {
     /// Cap containing every outward normal of the node's exact surface.
     pub cone: NormalCone,
     /// A band containing them too, about the axis their spread is narrowest around (a
-    /// cylinder's axis for a strip wrapped around it); [`NormalBand::ALL`] where the cap is
-    /// narrow enough on its own (half-angle below 45°).
+    /// cylinder's axis for a strip wrapped around it, or for a single piece of it, whose
+    /// normals turn about that axis only: the band is then far thinner than the cap);
+    /// [`NormalBand::ALL`] where it would confine the normals no more than the cap (see
+    /// `node_band`).
     pub band: NormalBand,
     /// The slab along `cone.axis`, relative to `centre`: [lowest, highest].
     pub slab: [f64; 2],
@@ -65,6 +67,10 @@ pub struct PatchNode {
     /// a second-order quantity in the cone's angle: a tangent plane turned by φ changes the
     /// restriction of its tensor by O(φ²) only.)
     pub curvature_spread: f64,
+    /// The least deviation bound (mm) of the node's pieces: every bound of the node (ball,
+    /// slab, box) is built from the pieces' corners grown by their own deviations, so the mesh
+    /// pieces themselves lie in the volume shrunk by this much.
+    pub mesh_inset: f64,
     /// The node's surface is smooth enough to certify pairs: every corner had a tangent plane
     /// and curvature, and no corner lies on a concave crease or at an apex.
     pub smooth: bool,
@@ -183,6 +189,8 @@ struct Item {
     /// Bound (mm) on the distance between the item and its exact surface.
     deviation: f64,
     cone: NormalCone,
+    /// A band containing the item's normals too ([`NormalBand::ALL`] when none is known).
+    band: NormalBand,
     /// Curvature tensors at the corners (meaningful where the item is smooth).
     tensors: [CurvatureTensor; 3],
     smooth: bool,
@@ -454,6 +462,7 @@ fn piece_item(
         count: 3,
         deviation: chordal_error,
         cone: NormalCone::ALL,
+        band: NormalBand::ALL,
         tensors: [CurvatureTensor::ZERO; 3],
         smooth: false,
         leaf: PatchLeaf::Piece(k),
@@ -579,6 +588,12 @@ fn piece_item(
         .iter()
         .flat_map(|a| sampled.iter().map(move |b| a.angle_between(*b)))
         .fold(0.0, f64::max);
+    // A crease's arc of normals is sampled at its ends only: no band for such a piece.
+    let band = if extra_count == 0 {
+        piece_band(sampled, spread)
+    } else {
+        NormalBand::ALL
+    };
     all[count..count + extra_count].copy_from_slice(&extra[..extra_count]);
     let cone = NormalCone::bounding(&all[..count + extra_count])
         .widened(INTERIOR_SPREAD * spread + NORMAL_FLOOR);
@@ -587,10 +602,58 @@ fn piece_item(
         count: 3,
         deviation: piece_deviation(piece, params, surface.as_ref(), chordal_error),
         cone,
+        band,
         tensors,
         smooth: smooth && face_count == 3,
         leaf: PatchLeaf::Piece(k),
     }
+}
+
+/// Fraction of the range of the sampled normals' angles from a piece's band axis added on each
+/// side of the band: a quadratic through the samples at the corners and edge midpoints
+/// overshoots their range inside the triangle by at most an eighth of it along an edge, and the
+/// centroid sample bounds the rest; a quarter leaves a margin.
+const BAND_OVERSHOOT: f64 = 0.25;
+
+/// The band of a piece's face normals `sampled` (corners, edge midpoints, centroid), of
+/// angular spread `spread` (rad): about the pole of the great circle through the two samples
+/// farthest apart (a cylinder's or an extrusion's axis, along which the normal does not turn;
+/// any axis where the normals do not lie on one great circle), from the least
+/// to the largest angle of a sample, widened by [`BAND_OVERSHOOT`] of that range (the
+/// second-order overshoot between samples), by a tenth of spread³ (the third-order remainder of
+/// the normal map between samples half a piece apart, the cube of the turn across the piece,
+/// which [`INTERIOR_SPREAD`] covers for the cap with a first-order margin) and by
+/// [`NORMAL_FLOOR`]. On a cylinder the samples lie on the great circle about its axis, and so
+/// does every normal between them: the band is as thin as the floor, where the cap is as wide
+/// as the piece's turn.
+fn piece_band(sampled: &[DVec3], spread: f64) -> NormalBand {
+    if sampled.len() < 3 {
+        return NormalBand::ALL;
+    }
+    // The pole of the great circle through the two samples farthest apart.
+    let (mut far, mut best) = ((sampled[0], sampled[0]), -1.0);
+    for (i, a) in sampled.iter().enumerate() {
+        for b in &sampled[i + 1..] {
+            let d = a.distance_squared(*b);
+            if d > best {
+                (far, best) = ((*a, *b), d);
+            }
+        }
+    }
+    let Some(axis) = far.0.cross(far.1).try_normalize() else {
+        return NormalBand::ALL;
+    };
+    let (lo, hi) = sampled
+        .iter()
+        .map(|n| axis.dot(*n).clamp(-1.0, 1.0).acos())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), a| {
+            (lo.min(a), hi.max(a))
+        });
+    let widen = BAND_OVERSHOOT * (hi - lo) + INTERIOR_SPREAD * spread.powi(3) + NORMAL_FLOOR;
+    if !widen.is_finite() {
+        return NormalBand::ALL;
+    }
+    NormalBand::new(axis, lo - widen, hi + widen)
 }
 
 /// Cosine of the half-angle of a node's normal cone above which a split by normals is tried
@@ -621,6 +684,49 @@ fn split_cost(items: &[Item], order: &[u32], mid: usize) -> f64 {
             size * (1.0 + items_cone(items, half).half_angle() / COST_ANGLE)
         })
         .sum()
+}
+
+/// The band of a node over `order` (item indices) with cap `cone`: a leaf keeps its item's
+/// band; an inner node gets the band about the axis its items' normals spread least around
+/// (from their cone axes, or their bands' axes where every item has one) containing each
+/// item's cap and band ([`NormalBand::around_items`]). A band that confines the normals no
+/// more than the cap does is dropped ([`NormalBand::ALL`]): it would only cost tests.
+fn node_band(items: &[Item], order: &[u32], cone: NormalCone) -> NormalBand {
+    let band = if let [single] = order {
+        items[*single as usize].band
+    } else {
+        // Where every item has a band, about the mean of their axes (turned to one side: a
+        // band about -a is one about a); else about the pole of the items' cap axes.
+        let first = items[order[0] as usize].band.axis;
+        let banded = order.iter().all(|&i| !items[i as usize].band.is_all());
+        let mean = order
+            .iter()
+            .map(|&i| items[i as usize].band.axis)
+            .map(|a| if a.dot(first) < 0.0 { -a } else { a })
+            .sum::<DVec3>()
+            .try_normalize();
+        let axis = match (banded, mean) {
+            (true, Some(axis)) => axis,
+            _ => narrowest_axis(order.iter().map(|&i| items[i as usize].cone.axis)),
+        };
+        NormalBand::around_items(
+            axis,
+            order
+                .iter()
+                .map(|&i| (items[i as usize].cone, items[i as usize].band)),
+        )
+    };
+    if band.is_all() || cone.is_all() {
+        return band;
+    }
+    // The cap alone confines the angles from the band's axis to [φ - θ, φ + θ].
+    let phi = band.axis.dot(cone.axis).clamp(-1.0, 1.0).acos();
+    let theta = cone.half_angle();
+    if band.lo <= (phi - theta).max(0.0) && band.hi >= (phi + theta).min(std::f64::consts::PI) {
+        NormalBand::ALL
+    } else {
+        band
+    }
 }
 
 /// The index (0, 1, 2) of the largest component.
@@ -693,6 +799,7 @@ fn build_node(items: &[Item], order: &mut [u32], nodes: &mut Vec<PatchNode>) -> 
         half_extents: DVec3::ZERO,
         curvature: CurvatureTensor::ZERO,
         curvature_spread: f64::INFINITY,
+        mesh_inset: 0.0,
         smooth: false,
         right: u32::MAX,
         leaf: PatchLeaf::Inner,
@@ -824,19 +931,17 @@ fn build_node(items: &[Item], order: &mut [u32], nodes: &mut Vec<PatchNode>) -> 
     node.centre = centre;
     node.radius = reach + slack;
     node.cone = cone;
-    node.band = if cone.cos < NORMAL_SPLIT_COS {
-        NormalBand::around(
-            narrowest_axis(order.iter().map(|&i| items[i as usize].cone.axis)),
-            order.iter().map(|&i| items[i as usize].cone),
-        )
-    } else {
-        NormalBand::ALL
-    };
+    node.band = node_band(items, order, cone);
     node.slab = [s_lo - slack, s_hi + slack];
     node.box_offset = 0.5 * (box_lo + box_hi) - centre;
     node.half_extents = 0.5 * (box_hi - box_lo) + slack;
     node.curvature = curvature;
     node.curvature_spread = curvature_spread;
+    node.mesh_inset = order
+        .iter()
+        .map(|&i| items[i as usize].deviation)
+        .fold(f64::INFINITY, f64::min)
+        .max(0.0);
     node.smooth = smooth && curvature_spread.is_finite();
     node.leaf = leaf;
     node.representative = representative;

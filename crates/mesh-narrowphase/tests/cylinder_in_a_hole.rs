@@ -1,0 +1,72 @@
+//! A pencil tilted in a tube's hole (the fixture pencil-tube-two-contacts): its cylinder runs
+//! within 0.02-1.2 mm of the hole's wall over the tube's whole length, and the only minima of
+//! distance are on the two rim circles, where the pencil leans on them. The configuration is
+//! symmetric about the xz plane (the pencil is turned about y and moved along x), so each
+//! minimum lies in that plane: at (5, 0, 60) on the top rim and (-5, 0, 0) on the bottom one.
+//!
+//! Before the normal bands (issue 15, part 2) every leaf pair along the wall was critical (a
+//! piece of a cylinder has a cap as wide as its turn), and 11 seeds reached Stage 3 for these two
+//! minima; now the wall's pairs are pruned and the normal-cone path hands over one seed per
+//! minimum.
+
+mod common;
+
+use common::*;
+use geom_param::{DQuat, DVec3, MeshOptions, ObjectFile, ObjectModel};
+use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch};
+
+fn fixture(name: &str) -> ObjectModel {
+    let path = format!(
+        "{}/../../fixtures/objects/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).expect("fixture exists");
+    ObjectFile::from_json(&text)
+        .expect("valid fixture")
+        .build(&MeshOptions {
+            chordal_tolerance: 0.05,
+        })
+        .expect("valid tolerance")
+}
+
+#[test]
+fn a_pencil_leaning_in_a_tube_gets_one_seed_per_rim_contact() {
+    let tube = Prepared::new(fixture("tube"));
+    let pencil = Prepared::new(fixture("pencil"));
+    // The fixture's pose of the pencil (the tube at the identity).
+    let pose_b = pose(
+        DQuat::from_array([0.0, 0.024325244977882785, 0.0, 0.9997040974492232]),
+        DVec3::new(-3.87032714844386, 0.0, -49.79149919838436),
+    );
+    let band = ContactBand {
+        margin: 1.0,
+        delta1: -0.001,
+        delta2: 0.1,
+    };
+    let mut scratch = MeshScratch::default();
+    let mut seeds = Vec::new();
+    for ca in &tube.object.components {
+        for cb in &pencil.object.components {
+            let (_, out) = query_path(
+                ConcavePath::NormalCones,
+                (&tube, ca.id),
+                (&pencil, cb.id),
+                &pose_b,
+                &band,
+                &mut scratch,
+            );
+            seeds.extend(out.seeds);
+        }
+    }
+    let minima = [DVec3::new(5.0, 0.0, 60.0), DVec3::new(-5.0, 0.0, 0.0)];
+    let on_tube: Vec<DVec3> = seeds.iter().map(|s| s.a.local_point).collect();
+    println!("seeds on the tube: {on_tube:?}");
+    assert_eq!(seeds.len(), 2, "{on_tube:?}");
+    for m in minima {
+        // Within a leaf's size (the pencil's pieces are about 2.5 mm long) of the minimum.
+        assert!(
+            on_tube.iter().any(|p| p.distance(m) <= 1.5),
+            "no seed near {m}: {on_tube:?}"
+        );
+    }
+}
