@@ -6,7 +6,7 @@
 //! midpoints are within the fit tolerance.
 
 use crate::curves::curve::{Curve, ParamRange};
-use crate::curves::curve2::{Circle2, Curve2, Line2};
+use crate::curves::curve2::{Circle2, Curve2};
 use crate::curves::nurbs_curve2::NurbsCurve2;
 use crate::surfaces::surface::Surface;
 use glam::{DVec2, DVec3};
@@ -286,10 +286,9 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
         };
         // A line in (u, v).
         let (t0, t1) = (ts[0], ts[count - 1]);
-        let direction = (uvs[count - 1] - uvs[0]) / (t1 - t0);
-        let line = Line2 {
-            origin: uvs[0] - t0 * direction,
-            direction,
+        let line = Segment2 {
+            start: uvs[0],
+            end: uvs[count - 1],
             range: edge_range,
         };
         let e = error_of(&line);
@@ -309,6 +308,8 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                 inner: circle,
                 e0: uvs[0] - at0,
                 e1: uvs[count - 1] - at1,
+                p0: uvs[0],
+                p1: uvs[count - 1],
                 range: edge_range,
             };
             let e = error_of(&circle);
@@ -395,6 +396,34 @@ fn hermite(ts: &[f64], uvs: &[DVec2], rates: &[DVec2]) -> Result<NurbsCurve2, St
     NurbsCurve2::new(3, knots, points, weights, false).map_err(|e| e.to_string())
 }
 
+/// The straight p-curve from `start` at t_min to `end` at t_max, c(t) = (1 − s) start + s end
+/// with s = (t − t_min) / span: unlike origin + t · direction it gives both end points bit for
+/// bit, so consecutive entries of a loop that were snapped together meet exactly (a gap of one
+/// rounding unit can put a loop's closing point on its first segment, which the validation
+/// rightly counts as a crossing; SolidWorks' `box_sides.STEP` did).
+#[derive(Debug)]
+struct Segment2 {
+    start: DVec2,
+    end: DVec2,
+    range: ParamRange,
+}
+
+impl Curve2 for Segment2 {
+    fn eval(&self, t: f64) -> crate::curves::curve2::Curve2Point {
+        let span = self.range.span();
+        let s = (t - self.range.min) / span;
+        crate::curves::curve2::Curve2Point {
+            point: (1.0 - s) * self.start + s * self.end,
+            d1: (self.end - self.start) / span,
+            d2: DVec2::ZERO,
+        }
+    }
+
+    fn domain(&self) -> ParamRange {
+        self.range
+    }
+}
+
 /// A p-curve moved by a linear blend of two small corrections so that it passes exactly
 /// through given end points: c(t) = inner(t) + (1 − s) e0 + s e1, s = (t − t_min) / span.
 #[derive(Debug)]
@@ -402,6 +431,9 @@ struct EndCorrected<C: Curve2> {
     inner: C,
     e0: DVec2,
     e1: DVec2,
+    /// The end points the curve passes through at t_min and t_max.
+    p0: DVec2,
+    p1: DVec2,
     range: ParamRange,
 }
 
@@ -410,8 +442,16 @@ impl<C: Curve2> Curve2 for EndCorrected<C> {
         let c = self.inner.eval(t);
         let span = self.range.span();
         let s = (t - self.range.min) / span;
+        // At the ends, the end points bit for bit (see `Segment2`).
+        let point = if t == self.range.min {
+            self.p0
+        } else if t == self.range.max {
+            self.p1
+        } else {
+            c.point + (1.0 - s) * self.e0 + s * self.e1
+        };
         crate::curves::curve2::Curve2Point {
-            point: c.point + (1.0 - s) * self.e0 + s * self.e1,
+            point,
             d1: c.d1 + (self.e1 - self.e0) / span,
             d2: c.d2,
         }
