@@ -29,6 +29,12 @@ pub const DEFAULT_UNCERTAINTY_MM: f64 = 1e-6;
 pub const MAX_HEAL_FACTOR: f64 = 1000.0;
 /// The p-curve fit's share of the file's uncertainty.
 const FIT_SHARE: f64 = 0.25;
+/// The p-curve fit's floor relative to the model's extent (largest coordinate, mm): a file
+/// may state an uncertainty (1e-13 mm in some CAx-IF test files) below what a surface
+/// evaluated in f64 at that distance from the origin can resolve (about 1e-16 of it per
+/// rounding, times the conditioning of the projection); asking for less than ~4500 roundings
+/// would refuse exact geometry.
+const FIT_FLOOR: f64 = 1e-12;
 /// The healed tolerance's margin over the largest measured gap.
 const HEAL_MARGIN: f64 = 2.0;
 /// Margin of a free parameter's domain around the face's loops, relative to their extent.
@@ -41,7 +47,8 @@ pub const MAX_FACES: usize = 100_000;
 pub struct StepSolid {
     /// The B-rep's name (its `name` attribute), or `#id` when empty.
     pub name: String,
-    /// The `#id` of its MANIFOLD_SOLID_BREP or BREP_WITH_VOIDS.
+    /// The `#id` of its MANIFOLD_SOLID_BREP or BREP_WITH_VOIDS, or of the CLOSED_SHELL a
+    /// SHELL_BASED_SURFACE_MODEL lists.
     pub id: u64,
     /// The solid, in millimetres, validated, its convexity classified.
     pub solid: Solid,
@@ -78,16 +85,21 @@ struct Builder<'g, 'a> {
     worst_gap: f64,
 }
 
-/// Reads solid `root` (a MANIFOLD_SOLID_BREP or BREP_WITH_VOIDS).
-pub(crate) fn read_solid(graph: &Graph<'_>, root: u64) -> Result<StepSolid, StepError> {
+/// Reads solid `root` (a MANIFOLD_SOLID_BREP, a BREP_WITH_VOIDS, or a CLOSED_SHELL of a
+/// surface model), whose representation lists `item` (the solid itself, or the
+/// SHELL_BASED_SURFACE_MODEL holding the shell).
+pub(crate) fn read_solid(graph: &Graph<'_>, root: u64, item: u64) -> Result<StepSolid, StepError> {
     let top = graph.root(root).ok_or(StepError::NoSolid)?;
-    let context = context_of(graph, root).ok_or(StepError::Units {
+    let context = context_of(graph, item).ok_or(StepError::Units {
         id: root,
         reason: "no representation context with units holds the solid".into(),
     })?;
     let units = units_of(graph, context)?;
     let uncertainty = units.uncertainty_mm.unwrap_or(DEFAULT_UNCERTAINTY_MM);
-    let name_attr = top.string(0);
+    let mut name_attr = top.string(0);
+    if (name_attr.trim().is_empty() || name_attr == "NONE") && item != root {
+        name_attr = graph.root(item).map(|m| m.string(0)).unwrap_or_default();
+    }
     let name = if name_attr.trim().is_empty() || name_attr == "NONE" {
         format!("#{root}")
     } else {
@@ -108,7 +120,12 @@ pub(crate) fn read_solid(graph: &Graph<'_>, root: u64) -> Result<StepSolid, Step
         worst_gap: 0.0,
     };
     // Shells: (closed shell, faces flipped).
-    let mut shells = vec![(top.reference(1)?, false)];
+    let outer = if top.record.has("CLOSED_SHELL") {
+        root
+    } else {
+        top.reference(1)?
+    };
+    let mut shells = vec![(outer, false)];
     if top.record.has("BREP_WITH_VOIDS") {
         for void in top.ref_list(2)? {
             let v = graph.get_as(&top, void, "ORIENTED_CLOSED_SHELL", "a void shell")?;
@@ -147,6 +164,7 @@ pub(crate) fn read_solid(graph: &Graph<'_>, root: u64) -> Result<StepSolid, Step
         .values()
         .fold(1.0_f64, |m, p| m.max(p.abs().max_element()));
     let big = 8.0 * extent;
+    builder.fit_tolerance = builder.fit_tolerance.max(FIT_FLOOR * extent);
     for (fi, p) in pending.into_iter().enumerate() {
         let face_id = FaceId(u32::try_from(fi).map_err(|_| StepError::TooLarge {
             what: "faces of one solid",

@@ -239,19 +239,42 @@ impl GeometryReader<'_, '_> {
                         },
                     );
                 }
+                "QUASI_UNIFORM_CURVE" | "UNIFORM_CURVE" | "BEZIER_CURVE" => {
+                    let degree = degree_of(&e, 1)?;
+                    let points = self.points(&e, 2)?;
+                    let form = KnotForm::of(name).ok_or_else(|| e.unsupported("an edge curve"))?;
+                    let knots = form.knots(&e, degree, points.len())?;
+                    let weights = vec![1.0; points.len()];
+                    return checked_curve(
+                        &e,
+                        BSplineData {
+                            degree,
+                            knots,
+                            points,
+                            weights,
+                        },
+                    );
+                }
                 _ => return Err(e.unsupported("an edge curve")),
             }
         }
-        // The complex forms of a B-spline curve.
-        if let (Some(b), Some(k)) = (
-            r.part("B_SPLINE_CURVE"),
-            r.part("B_SPLINE_CURVE_WITH_KNOTS"),
-        ) {
+        // The complex forms of a B-spline curve: its knots given (B_SPLINE_CURVE_WITH_KNOTS)
+        // or implied by a uniform, quasi-uniform or Bezier form.
+        if let Some(b) = r.part("B_SPLINE_CURVE") {
             let be = Entity { params: b, ..e };
-            let ke = Entity { params: k, ..e };
             let degree = degree_of(&be, 0)?;
             let points = self.points(&be, 1)?;
-            let knots = expand_knots(&ke, 0, 1)?;
+            let knots = match r.part("B_SPLINE_CURVE_WITH_KNOTS") {
+                Some(k) => expand_knots(&Entity { params: k, ..e }, 0, 1)?,
+                None => {
+                    let form = ["QUASI_UNIFORM_CURVE", "UNIFORM_CURVE", "BEZIER_CURVE"]
+                        .into_iter()
+                        .find(|f| r.has(f))
+                        .and_then(KnotForm::of)
+                        .ok_or_else(|| e.unsupported("an edge curve"))?;
+                    form.knots(&e, degree, points.len())?
+                }
+            };
             let weights = match r.part("RATIONAL_B_SPLINE_CURVE") {
                 Some(w) => Entity { params: w, ..e }.real_list(0)?,
                 None => vec![1.0; points.len()],
@@ -290,10 +313,10 @@ impl GeometryReader<'_, '_> {
             e = self.graph.get(&e, e.reference(1)?)?;
         }
         let spec = self.surface_spec(&e)?;
-        if let SurfaceSpec::Nurbs { .. } = spec {
-            spec.build([range(0.0, 1.0), range(0.0, 1.0)])
-                .map_err(|g| e.geometry(g))?;
-        }
+        // The constructors' checks (radii, knots, weights) at the surface's own entity, so an
+        // error names it rather than the face (the domain here is a placeholder).
+        spec.build([range(0.0, 1.0), range(0.0, 1.0)])
+            .map_err(|g| e.geometry(g))?;
         Ok(spec)
     }
 
@@ -339,6 +362,19 @@ impl GeometryReader<'_, '_> {
                     };
                     SurfaceSpec::Revolution(curve, point, axis)
                 }
+                "QUASI_UNIFORM_SURFACE" | "UNIFORM_SURFACE" | "BEZIER_SURFACE" => {
+                    let degree = [degree_of(&e, 1)?, degree_of(&e, 2)?];
+                    let points = self.net(&e, 3)?;
+                    let form = KnotForm::of(name).ok_or_else(|| e.unsupported("a face surface"))?;
+                    let knots = net_knots(&e, form, degree, &points)?;
+                    let weights = points.iter().map(|row| vec![1.0; row.len()]).collect();
+                    SurfaceSpec::Nurbs {
+                        degree,
+                        knots,
+                        points,
+                        weights,
+                    }
+                }
                 "B_SPLINE_SURFACE_WITH_KNOTS" => {
                     let degree = [degree_of(&e, 1)?, degree_of(&e, 2)?];
                     let points = self.net(&e, 3)?;
@@ -354,15 +390,24 @@ impl GeometryReader<'_, '_> {
                 _ => return Err(e.unsupported("a face surface")),
             });
         }
-        if let (Some(b), Some(k)) = (
-            r.part("B_SPLINE_SURFACE"),
-            r.part("B_SPLINE_SURFACE_WITH_KNOTS"),
-        ) {
+        if let Some(b) = r.part("B_SPLINE_SURFACE") {
             let be = Entity { params: b, ..e };
-            let ke = Entity { params: k, ..e };
             let degree = [degree_of(&be, 0)?, degree_of(&be, 1)?];
             let points = self.net(&be, 2)?;
-            let knots = [expand_knots(&ke, 0, 2)?, expand_knots(&ke, 1, 3)?];
+            let knots = match r.part("B_SPLINE_SURFACE_WITH_KNOTS") {
+                Some(k) => {
+                    let ke = Entity { params: k, ..e };
+                    [expand_knots(&ke, 0, 2)?, expand_knots(&ke, 1, 3)?]
+                }
+                None => {
+                    let form = ["QUASI_UNIFORM_SURFACE", "UNIFORM_SURFACE", "BEZIER_SURFACE"]
+                        .into_iter()
+                        .find(|f| r.has(f))
+                        .and_then(KnotForm::of)
+                        .ok_or_else(|| e.unsupported("a face surface"))?;
+                    net_knots(&e, form, degree, &points)?
+                }
+            };
             let weights = match r.part("RATIONAL_B_SPLINE_SURFACE") {
                 Some(w) => {
                     let we = Entity { params: w, ..e };
@@ -407,6 +452,83 @@ impl GeometryReader<'_, '_> {
             })
             .collect()
     }
+}
+
+/// A B-spline whose knots its type implies (ISO 10303-42, 4.3.4 and 4.3.5: the subtypes of
+/// B_SPLINE_CURVE and B_SPLINE_SURFACE that carry no knot list).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum KnotForm {
+    /// Knots −p, −p + 1, ..., n + 1, each once (n + 1 control points, degree p).
+    Uniform,
+    /// Knots 0, 1, ..., n − p, the end ones p + 1 times, the interior ones once.
+    QuasiUniform,
+    /// Piecewise Bezier: knots 0, 1, ..., n / p, the end ones p + 1 times, the interior
+    /// ones p times (n must be a multiple of p).
+    Bezier,
+}
+
+impl KnotForm {
+    fn of(name: &str) -> Option<Self> {
+        Some(match name {
+            "UNIFORM_CURVE" | "UNIFORM_SURFACE" => Self::Uniform,
+            "QUASI_UNIFORM_CURVE" | "QUASI_UNIFORM_SURFACE" => Self::QuasiUniform,
+            "BEZIER_CURVE" | "BEZIER_SURFACE" => Self::Bezier,
+            _ => return None,
+        })
+    }
+
+    /// The expanded knots of `count` control points of degree `degree` (n + p + 2 of them,
+    /// n + 1 = count).
+    fn knots(self, e: &Entity<'_>, degree: usize, count: usize) -> Result<Vec<f64>, StepError> {
+        if count <= degree {
+            return Err(e.malformed(format!(
+                "{count} control points for degree {degree} (at least {} needed)",
+                degree + 1
+            )));
+        }
+        let n = count - 1;
+        let p = degree;
+        Ok(match self {
+            Self::Uniform => (0..=n + p + 1).map(|k| k as f64 - p as f64).collect(),
+            Self::QuasiUniform => {
+                let mut out = vec![0.0; p + 1];
+                out.extend((1..n - p + 1).map(|k| k as f64));
+                out.extend(std::iter::repeat_n((n - p + 1) as f64, p + 1));
+                out
+            }
+            Self::Bezier => {
+                if n % p != 0 {
+                    return Err(e.malformed(format!(
+                        "{count} control points do not make Bezier segments of degree {degree}"
+                    )));
+                }
+                let segments = n / p;
+                let mut out = vec![0.0; p + 1];
+                for k in 1..segments {
+                    out.extend(std::iter::repeat_n(k as f64, p));
+                }
+                out.extend(std::iter::repeat_n(segments as f64, p + 1));
+                out
+            }
+        })
+    }
+}
+
+/// The implied knots (u, v) of a control net with rows along u.
+fn net_knots(
+    e: &Entity<'_>,
+    form: KnotForm,
+    degree: [usize; 2],
+    points: &[Vec<DVec3>],
+) -> Result<[Vec<f64>; 2], StepError> {
+    let columns = points.first().map_or(0, Vec::len);
+    if points.iter().any(|row| row.len() != columns) {
+        return Err(e.malformed("the control net's rows differ in length"));
+    }
+    Ok([
+        form.knots(e, degree[0], points.len())?,
+        form.knots(e, degree[1], columns)?,
+    ])
 }
 
 /// A B-spline curve whose data the constructor accepts (knots, weights), with the
