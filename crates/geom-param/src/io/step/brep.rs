@@ -190,6 +190,34 @@ struct LoopContext<'s> {
     surface: &'s dyn Surface,
     guess: &'s dyn Fn(DVec3) -> Option<[f64; 2]>,
     periods: [f64; 2],
+    /// Parameters in which the surface closes without being periodic.
+    closed: [bool; 2],
+}
+
+/// Samples along each side of the domain compared with the opposite side to find a surface
+/// closed in that parameter.
+const CLOSED_SAMPLES: usize = 9;
+
+/// Whether the surface closes in each non-periodic parameter: S(min, t) and S(max, t) (or
+/// S(t, min) and S(t, max)) within `tolerance` at [`CLOSED_SAMPLES`] values of the other
+/// parameter.
+fn closed_parameters(surface: &dyn Surface, tolerance: f64) -> [bool; 2] {
+    let d = surface.domain();
+    [0, 1].map(|i| {
+        if d[i].periodic {
+            return false;
+        }
+        let o = d[1 - i];
+        (0..CLOSED_SAMPLES).all(|k| {
+            let t = o.min + o.span() * k as f64 / (CLOSED_SAMPLES - 1) as f64;
+            let (a, b) = if i == 0 {
+                (surface.eval(d[0].min, t), surface.eval(d[0].max, t))
+            } else {
+                (surface.eval(t, d[1].min), surface.eval(t, d[1].max))
+            };
+            a.point.distance(b.point) <= tolerance
+        })
+    })
 }
 
 /// One loop's p-curves.
@@ -418,6 +446,7 @@ impl<'g, 'a> Builder<'g, 'a> {
             surface: surface.as_ref(),
             guess: &guess,
             periods,
+            closed: closed_parameters(surface.as_ref(), self.uncertainty),
         };
         for (loop_id, entries) in &p.loops {
             let fitted = self.fit_loop(&fit_ctx, *loop_id, entries)?;
@@ -545,6 +574,7 @@ impl<'g, 'a> Builder<'g, 'a> {
                 tolerance: self.fit_tolerance,
                 snap_end,
                 snap_limit: limit,
+                closed: ctx.closed,
             };
             let pc = fit(&input).map_err(|reason| StepError::PCurve {
                 face: ctx.face,

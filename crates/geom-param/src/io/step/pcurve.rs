@@ -153,6 +153,92 @@ pub(crate) struct FitInput<'a> {
     /// Largest distance (mm) on the surface over which an end is snapped to its neighbour's;
     /// farther, the ends are left apart for the loop's closure check to report.
     pub snap_limit: f64,
+    /// The parameters in which the surface closes without being periodic (S(min, v) =
+    /// S(max, v): a closed B-spline surface, an extrusion of a closed B-spline curve).
+    pub closed: [bool; 2],
+}
+
+/// A surface closed but not periodic in some parameter, seen as periodic there: projections
+/// move freely across its seam and unwrap continuously along an edge, as on a cylinder; the
+/// fit then places the whole entry in the domain ([`place_in_closed_domain`]).
+struct ClosedAsPeriodic<'a> {
+    inner: &'a dyn Surface,
+    domain: [ParamRange; 2],
+}
+
+impl std::fmt::Debug for ClosedAsPeriodic<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ClosedAsPeriodic")
+            .field("domain", &self.domain)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Surface for ClosedAsPeriodic<'_> {
+    fn eval(&self, u: f64, v: f64) -> crate::surfaces::surface::SurfacePoint {
+        self.inner
+            .eval(self.domain[0].normalize(u), self.domain[1].normalize(v))
+    }
+
+    fn domain(&self) -> [ParamRange; 2] {
+        self.domain
+    }
+}
+
+/// Moves an entry's samples by whole spans in the closed (non-periodic) parameters so that
+/// they lie in `domain` (within `slack`). An entry on the seam itself (every sample on one
+/// boundary) could lie on either side: it goes on the side that puts the face on its left,
+/// as a face's loops run (outer loop counter-clockwise, holes clockwise): running up in v at
+/// u = max, down at u = min; in u at v = min running right, at v = max running left.
+fn place_in_closed_domain(
+    uvs: &mut [DVec2],
+    domain: [ParamRange; 2],
+    closed: [bool; 2],
+    reversed: bool,
+) {
+    let n = uvs.len();
+    let (first, last) = if reversed { (n - 1, 0) } else { (0, n - 1) };
+    let run = uvs[last] - uvs[first];
+    for i in 0..2 {
+        if !closed[i] {
+            continue;
+        }
+        let (min, span) = (domain[i].min, domain[i].span());
+        let slack = 1e-9 * span;
+        // Bring the first sample into [min, max), then try that shift and its neighbours.
+        let base = -span * ((uvs[first][i] - min) / span).floor();
+        let (lo, hi) = uvs
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
+                (lo.min(q[i]), hi.max(q[i]))
+            });
+        let fits = |shift: f64| lo + shift >= min - slack && hi + shift <= min + span + slack;
+        let candidates: Vec<f64> = [base - span, base, base + span]
+            .into_iter()
+            .filter(|&s| fits(s))
+            .collect();
+        let shift = match candidates.as_slice() {
+            [] => continue,
+            [one] => *one,
+            // On the seam: the face's side decides (the other parameter's run along the
+            // entry gives the direction).
+            several => {
+                let at_max = if i == 0 { run.y > 0.0 } else { run.x < 0.0 };
+                let target = if at_max { min + span } else { min };
+                *several
+                    .iter()
+                    .min_by(|a, b| {
+                        ((lo + *a) - target)
+                            .abs()
+                            .total_cmp(&((lo + *b) - target).abs())
+                    })
+                    .unwrap_or(&base)
+            }
+        };
+        for q in uvs.iter_mut() {
+            q[i] += shift;
+        }
+    }
 }
 
 /// Shift by whole periods that brings `x` nearest `near` (0 for a non-periodic parameter).
@@ -172,7 +258,15 @@ fn wrap_near(x: DVec2, near: DVec2, periods: [f64; 2]) -> DVec2 {
 /// A description when no fit within the tolerance exists with [`MAX_SEGMENTS`] segments, or
 /// a projection is not finite.
 pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
-    let surface = input.surface;
+    let true_domain = input.surface.domain();
+    let seen_periodic = ClosedAsPeriodic {
+        inner: input.surface,
+        domain: [0, 1].map(|i| ParamRange {
+            periodic: true_domain[i].periodic || input.closed[i],
+            ..true_domain[i]
+        }),
+    };
+    let surface: &dyn Surface = &seen_periodic;
     let domain = surface.domain();
     let periods = [0, 1].map(|i| {
         if domain[i].periodic {
@@ -238,6 +332,7 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
         for uv in &mut uvs {
             *uv += shift;
         }
+        place_in_closed_domain(&mut uvs, true_domain, input.closed, input.reversed);
         // Consecutive entries meet exactly in (u, v): the entry point is the previous end, the
         // exit point the given one (both within the healed gap of the projections).
         let (first, last) = if input.reversed {
@@ -250,7 +345,16 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                 .eval(domain[0].normalize(uv.x), domain[1].normalize(uv.y))
                 .point
         };
-        let near = |a: DVec2, b: DVec2| on(a).distance(on(b)) <= input.snap_limit;
+        // Near on the surface, and on the same side of a closed surface's seam (where
+        // points a span apart in (u, v) are one point in space).
+        let same_side = |a: DVec2, b: DVec2| {
+            (0..2).all(|i| {
+                !(input.closed[i] && !true_domain[i].periodic)
+                    || (a[i] - b[i]).abs() < 0.5 * true_domain[i].span()
+            })
+        };
+        let near =
+            |a: DVec2, b: DVec2| same_side(a, b) && on(a).distance(on(b)) <= input.snap_limit;
         if let Some(prev) = input.previous_end.filter(|&p| near(p, uvs[first])) {
             uvs[first] = prev;
         }
