@@ -29,12 +29,12 @@ pub const DEFAULT_UNCERTAINTY_MM: f64 = 1e-6;
 pub const MAX_HEAL_FACTOR: f64 = 1000.0;
 /// The p-curve fit's share of the file's uncertainty.
 const FIT_SHARE: f64 = 0.25;
-/// The p-curve fit's floor relative to the model's extent (largest coordinate, mm): a file
-/// may state an uncertainty (1e-13 mm in some CAx-IF test files) below what a surface
+/// The least uncertainty used, relative to the model's extent (largest coordinate, mm): a
+/// file may state an uncertainty (1e-13 mm in some CAx-IF test files) below what a surface
 /// evaluated in f64 at that distance from the origin can resolve (about 1e-16 of it per
-/// rounding, times the conditioning of the projection); asking for less than ~4500 roundings
-/// would refuse exact geometry.
-const FIT_FLOOR: f64 = 1e-12;
+/// rounding, times the conditioning of a projection); fits and gaps are measured against
+/// the larger of the two, so exact geometry written with rounding is not refused.
+pub const UNCERTAINTY_FLOOR: f64 = 4e-12;
 /// The healed tolerance's margin over the largest measured gap.
 const HEAL_MARGIN: f64 = 2.0;
 /// Margin of a free parameter's domain around the face's loops, relative to their extent.
@@ -164,7 +164,8 @@ pub(crate) fn read_solid(graph: &Graph<'_>, root: u64, item: u64) -> Result<Step
         .values()
         .fold(1.0_f64, |m, p| m.max(p.abs().max_element()));
     let big = 8.0 * extent;
-    builder.fit_tolerance = builder.fit_tolerance.max(FIT_FLOOR * extent);
+    builder.uncertainty = builder.uncertainty.max(UNCERTAINTY_FLOOR * extent);
+    builder.fit_tolerance = FIT_SHARE * builder.uncertainty;
     for (fi, p) in pending.into_iter().enumerate() {
         let face_id = FaceId(u32::try_from(fi).map_err(|_| StepError::TooLarge {
             what: "faces of one solid",

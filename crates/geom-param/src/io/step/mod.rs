@@ -7,7 +7,8 @@
 //!   surfaces; `pcurve`: p-curves by projection; `brep`: faces, loops, edges into a `Solid`.
 //! - Bounded: [`part21::MAX_INPUT_BYTES`] of input, [`part21::MAX_ENTITIES`] instances,
 //!   [`brep::MAX_FACES`] faces per solid, [`pcurve::MAX_SEGMENTS`] segments per p-curve.
-//! - Healing: the model tolerance is the file's uncertainty, raised to twice the largest gap
+//! - Healing: the model tolerance is the file's uncertainty (at least [`UNCERTAINTY_FLOOR`]
+//!   times the model's extent), raised to twice the largest gap
 //!   measured (edge to face, edge end to vertex, loop closure) up to [`brep::MAX_HEAL_FACTOR`]
 //!   times the uncertainty; a larger gap is an error.
 
@@ -19,14 +20,17 @@ pub mod part21;
 pub(crate) mod pcurve;
 pub(crate) mod units;
 
-pub use brep::{DEFAULT_UNCERTAINTY_MM, MAX_FACES, MAX_HEAL_FACTOR, StepSolid};
+pub use brep::{DEFAULT_UNCERTAINTY_MM, MAX_FACES, MAX_HEAL_FACTOR, StepSolid, UNCERTAINTY_FLOOR};
 pub use error::StepError;
 
 use crate::io::step::graph::Graph;
 
 /// Schema name prefixes read (AP203, AP214, AP242 and their long names).
-const SCHEMAS: [&str; 6] = [
+const SCHEMAS: [&str; 7] = [
     "CONFIG_CONTROL_DESIGN",
+    // AP203's conformance-class draft names (CCD_CLA_GVP_AST, ...), as Pro/ENGINEER 2000
+    // and CADDS wrote them: the same entities as CONFIG_CONTROL_DESIGN.
+    "CCD_CLA_",
     "AUTOMOTIVE_DESIGN",
     "AP203",
     "AP214",
