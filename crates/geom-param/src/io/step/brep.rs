@@ -305,8 +305,25 @@ impl<'g, 'a> Builder<'g, 'a> {
                         (-d.max, -d.min)
                     }
                 } else {
-                    let a = nearest_param(natural.as_ref(), p1);
-                    let b = nearest_param(natural.as_ref(), p2);
+                    let mut a = nearest_param(natural.as_ref(), p1);
+                    let mut b = nearest_param(natural.as_ref(), p2);
+                    // On a closed B-spline (C(min) = C(max)) a vertex at the closure point
+                    // has two parameters: take the one that runs the edge in its sense.
+                    let closure = natural.eval(d.min).point;
+                    let ring = closure.distance(natural.eval(d.max).point) <= self.uncertainty;
+                    if ring && sense * a >= sense * b {
+                        let (first, last) = if sense > 0.0 {
+                            (d.min, d.max)
+                        } else {
+                            (d.max, d.min)
+                        };
+                        if p1.distance(closure) <= self.uncertainty {
+                            a = first;
+                        }
+                        if p2.distance(closure) <= self.uncertainty {
+                            b = last;
+                        }
+                    }
                     (sense * a, sense * b)
                 }
             }
