@@ -73,6 +73,14 @@ pub fn read_step(bytes: &[u8]) -> Result<Vec<StepSolid>, StepError> {
         })
         .map(|(&id, _)| (id, id))
         .collect();
+    // Shells a solid already bounds: a surface model listing one again adds no solid.
+    let bounded: std::collections::HashSet<u64> = roots
+        .iter()
+        .filter_map(|&(id, _)| match file.records[&id].parts[0].1.get(1) {
+            Some(part21::Param::Ref(shell)) => Some(*shell),
+            _ => None,
+        })
+        .collect();
     let mut open_shell = None;
     for (&id, r) in &file.records {
         if r.parts.len() != 1 || r.parts[0].0 != "SHELL_BASED_SURFACE_MODEL" {
@@ -87,7 +95,9 @@ pub fn read_step(bytes: &[u8]) -> Result<Vec<StepSolid>, StepError> {
         for shell in model.ref_list(1)? {
             let s = graph.get(&model, shell)?;
             if s.record.parts.len() == 1 && s.record.parts[0].0 == "CLOSED_SHELL" {
-                roots.push((shell, id));
+                if !bounded.contains(&shell) {
+                    roots.push((shell, id));
+                }
             } else if open_shell.as_ref().is_none_or(|(o, _)| shell < *o) {
                 open_shell = Some((shell, s.type_name()));
             }
