@@ -580,3 +580,67 @@ fn solidworks_box_sides_reads_its_six_solids_watertight() {
         assert!(measure(&m).volume > 0.0, "{name}");
     }
 }
+
+#[test]
+fn cascade_pcurves_are_read_where_they_agree_with_the_projection() {
+    // Matra Datavision's CASCADE 4.0 (OpenCASCADE's ancestor, CAx-IF io1): every edge a
+    // SURFACE_CURVE or SEAM_CURVE with a PCURVE per face, on planes, 11 cylinders and a 45°
+    // cone (whose v the model measures along the ruling, STEP along the axis). The lines and
+    // circles are taken from the file; the six rational B-spline circles on planes carry
+    // another parameter than the edge's angle and are projected.
+    let text = String::from_utf8(fixture("cascade_io1.stp")).expect("ASCII");
+    let with_file = read_step(text.as_bytes()).expect("reads");
+    let [s] = with_file.as_slice() else {
+        panic!("one solid");
+    };
+    assert_eq!(
+        (s.pcurves.from_file, s.pcurves.projected),
+        (64, 6),
+        "{:?}",
+        s.pcurves
+    );
+    // The same file with its PCURVE entities renamed: every p-curve projected.
+    let projected = read_step(text.replace("PCURVE(", "XPCURVE(").as_bytes()).expect("reads");
+    let [p] = projected.as_slice() else {
+        panic!("one solid");
+    };
+    assert_eq!((p.pcurves.from_file, p.pcurves.projected), (0, 70));
+    // Both p-curves of every edge use land on the same surface points (the file's and the
+    // fitted ones meet the edge within the fit tolerance, a quarter of the uncertainty).
+    let tolerance = 0.5 * s.solid.tolerance;
+    for (fi, (fa, fb)) in s.solid.faces.iter().zip(&p.solid.faces).enumerate() {
+        let (Some(ta), Some(tb)) = (&fa.trim, &fb.trim) else {
+            panic!("trimmed faces");
+        };
+        let [ru, rv] = fa.surface.domain();
+        for (la, lb) in ta.loops.iter().zip(&tb.loops) {
+            for (ea, eb) in la.entries.iter().zip(&lb.entries) {
+                assert_eq!(ea.edge, eb.edge);
+                let d = ea.pcurve.domain();
+                for k in 0..=32 {
+                    let t = d.min + d.span() * f64::from(k) / 32.0;
+                    let on = |c: &dyn geom_param::Curve2| {
+                        let q = c.eval(t).point;
+                        fa.surface.eval(ru.normalize(q.x), rv.normalize(q.y)).point
+                    };
+                    let gap = on(ea.pcurve.as_ref()).distance(on(eb.pcurve.as_ref()));
+                    assert!(gap <= tolerance, "face {fi}: {gap} mm at t = {t}");
+                }
+            }
+        }
+    }
+    // And the solid is the same: volumes within the meshes' bounds.
+    let volume = |solids: Vec<StepSolid>| {
+        let s = solids.into_iter().next().expect("one solid");
+        let m = model(s, 0.01);
+        assert_watertight("cascade io1", &m);
+        let measured = measure(&m);
+        (
+            measured.volume,
+            measured.area * measured.chordal_error + 1e-9 * measured.volume,
+        )
+    };
+    let (va, ba) = volume(with_file);
+    let (vb, bb) = volume(projected);
+    assert!((va - vb).abs() <= ba + bb, "{va} vs {vb}");
+}

@@ -3,10 +3,11 @@
 //! p-curves projected per face use, healing of the file's gaps within a bounded tolerance.
 
 use crate::curves::curve::{Curve, ParamRange};
+use crate::curves::curve2::Curve2;
 use crate::io::step::error::StepError;
 use crate::io::step::geometry::{CurveSpec, GeometryReader, SurfaceSpec, range};
 use crate::io::step::graph::{Entity, Graph};
-use crate::io::step::pcurve::{FitInput, fit};
+use crate::io::step::pcurve::{FitInput, MappedPCurve, fit};
 use crate::io::step::units::{context_of, units_of};
 use crate::object_model::{MeshOptions, ModelError, ObjectModel};
 use crate::surfaces::reversed_surface::ReversedSurface;
@@ -21,6 +22,7 @@ use crate::topology::validate::validate;
 use glam::{DVec2, DVec3};
 use std::collections::HashMap;
 use std::f64::consts::TAU;
+use std::sync::Arc;
 
 /// Uncertainty assumed when the file states none (mm).
 pub const DEFAULT_UNCERTAINTY_MM: f64 = 1e-6;
@@ -52,6 +54,8 @@ pub struct StepSolid {
     pub id: u64,
     /// The solid, in millimetres, validated, its convexity classified.
     pub solid: Solid,
+    /// Where its p-curves came from (the file's PCURVEs or projections).
+    pub pcurves: PCurveCount,
 }
 
 impl StepSolid {
@@ -68,6 +72,12 @@ impl StepSolid {
 struct EdgeRecord {
     /// The EDGE_CURVE's id.
     step_id: u64,
+    /// Its edge_geometry's id (a SURFACE_CURVE or SEAM_CURVE lists the file's p-curves);
+    /// 0 for a seam the reader added.
+    geometry_id: u64,
+    /// dt_file / dt of the edge's parameter: ±1 for its sense, over radians per angle unit
+    /// for a conic (whose file parameter is an angle).
+    rate: f64,
     curve: Box<dyn Curve>,
     ends: [u64; 2],
     uses: Vec<EdgeUse>,
@@ -83,12 +93,42 @@ struct Builder<'g, 'a> {
     edge_index: HashMap<u64, usize>,
     /// Largest gap found (mm): edge to face, edge end to vertex, loop closure.
     worst_gap: f64,
+    /// P-curves taken from the file's PCURVEs, and projected.
+    pcurves: PCurveCount,
+    /// Whether the file's PCURVEs are tried before fitting a projection.
+    use_file_pcurves: bool,
+}
+
+/// How a solid's p-curves were made.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PCurveCount {
+    /// The file's own PCURVEs, which agreed with the projection within the uncertainty.
+    pub from_file: usize,
+    /// Fitted to the projection of the 3D edge (no PCURVE in the file, one on another
+    /// surface, of a type or surface the reader does not map, or one that disagreed).
+    pub projected: usize,
 }
 
 /// Reads solid `root` (a MANIFOLD_SOLID_BREP, a BREP_WITH_VOIDS, or a CLOSED_SHELL of a
 /// surface model), whose representation lists `item` (the solid itself, or the
 /// SHELL_BASED_SURFACE_MODEL holding the shell).
 pub(crate) fn read_solid(graph: &Graph<'_>, root: u64, item: u64) -> Result<StepSolid, StepError> {
+    match read_solid_with(graph, root, item, true) {
+        // The file's p-curves agree with the edges within the fit tolerance, but where a
+        // loop is tight (a tangent arc along a line) that much can make it cross itself where
+        // the projections would not: the solid is read again from projections alone.
+        Err(StepError::Topology { .. }) => read_solid_with(graph, root, item, false),
+        other => other,
+    }
+}
+
+/// [`read_solid`], with the file's PCURVEs used where they agree or never.
+fn read_solid_with(
+    graph: &Graph<'_>,
+    root: u64,
+    item: u64,
+    use_file_pcurves: bool,
+) -> Result<StepSolid, StepError> {
     let top = graph.root(root).ok_or(StepError::NoSolid)?;
     let context = context_of(graph, item).ok_or(StepError::Units {
         id: root,
@@ -118,6 +158,8 @@ pub(crate) fn read_solid(graph: &Graph<'_>, root: u64, item: u64) -> Result<Step
         edges: Vec::new(),
         edge_index: HashMap::new(),
         worst_gap: 0.0,
+        pcurves: PCurveCount::default(),
+        use_file_pcurves,
     };
     // Shells: (closed shell, faces flipped).
     let outer = if top.record.has("CLOSED_SHELL") {
@@ -193,6 +235,11 @@ struct LoopContext<'s> {
     periods: [f64; 2],
     /// Parameters in which the surface closes without being periodic.
     closed: [bool; 2],
+    /// The ids a PCURVE of this face names as its basis surface.
+    surface_ids: &'s [u64],
+    /// File (u, v) to model (u, v) factors, a reversed face's v negated; `None` where the
+    /// file's p-curves are not mapped.
+    pcurve_scale: Option<DVec2>,
 }
 
 /// Samples along each side of the domain compared with the opposite side to find a surface
@@ -234,6 +281,9 @@ struct FittedLoop {
 /// A face read but not yet built: its surface, sense and loops of (edge index, reversed).
 struct PendingFace<'a> {
     entity: Entity<'a>,
+    /// The face's surface and, through RECTANGULAR_TRIMMED_SURFACEs, its basis: the ids a
+    /// PCURVE of this face may name.
+    surface_ids: Vec<u64>,
     surface: SurfaceSpec,
     sense: bool,
     loops: Vec<ReadLoop>,
@@ -263,7 +313,8 @@ impl<'g, 'a> Builder<'g, 'a> {
             .get_as(from, id, "EDGE_CURVE", "an oriented edge's edge")?;
         let (v1, v2) = (e.reference(1)?, e.reference(2)?);
         let (p1, p2) = (self.vertex(&e, v1)?, self.vertex(&e, v2)?);
-        let spec = self.reader.curve(&e, e.reference(3)?)?;
+        let geometry_id = e.reference(3)?;
+        let spec = self.reader.curve(&e, geometry_id)?;
         let mut sense = if e.boolean(4)? { 1.0 } else { -1.0 };
         // A line runs from its first vertex to its second whatever same_sense says (some
         // exporters write it inconsistently for lines; the vertices decide).
@@ -342,8 +393,14 @@ impl<'g, 'a> Builder<'g, 'a> {
                 .worst_gap
                 .max(if gap.is_nan() { f64::INFINITY } else { gap });
         }
+        let rate = match spec {
+            CurveSpec::Circle { .. } | CurveSpec::Ellipse { .. } => sense / self.reader.angle,
+            _ => sense,
+        };
         self.edges.push(EdgeRecord {
             step_id: id,
+            geometry_id,
+            rate,
             curve,
             ends: [v1, v2],
             uses: Vec::new(),
@@ -364,6 +421,16 @@ impl<'g, 'a> Builder<'g, 'a> {
             ..*face
         };
         let surface = self.reader.surface(&f, f.reference(2)?)?;
+        let mut surface_ids = vec![f.reference(2)?];
+        while let Some(t) = graph
+            .root(*surface_ids.last().unwrap_or(&0))
+            .filter(|t| t.record.has("RECTANGULAR_TRIMMED_SURFACE") && surface_ids.len() < 8)
+        {
+            match t.reference(1) {
+                Ok(basis) => surface_ids.push(basis),
+                Err(_) => break,
+            }
+        }
         let sense = f.boolean(3)? != flip;
         let mut loops = Vec::new();
         for b in f.ref_list(1)? {
@@ -404,6 +471,7 @@ impl<'g, 'a> Builder<'g, 'a> {
         }
         Ok(PendingFace {
             entity: f,
+            surface_ids,
             surface,
             sense,
             loops,
@@ -465,6 +533,11 @@ impl<'g, 'a> Builder<'g, 'a> {
             guess: &guess,
             periods,
             closed: closed_parameters(surface.as_ref(), self.uncertainty),
+            surface_ids: &p.surface_ids,
+            pcurve_scale: p
+                .surface
+                .pcurve_scale(self.reader.scale, self.reader.angle)
+                .map(|k| if p.sense { k } else { DVec2::new(k.x, -k.y) }),
         };
         for (loop_id, entries) in &p.loops {
             let fitted = self.fit_loop(&fit_ctx, *loop_id, entries)?;
@@ -557,6 +630,47 @@ impl<'g, 'a> Builder<'g, 'a> {
         })
     }
 
+    /// The file's p-curves of `edge` on the face of `ctx` (the PCURVEs its SURFACE_CURVE or
+    /// SEAM_CURVE lists whose basis is the face's surface), mapped to the model's (u, v) and
+    /// edge parameter. A PCURVE the reader cannot read or map is left to the projection,
+    /// which the 3D curve (the edge's definition) always allows: the 2D curve is a redundant
+    /// image of it, and no geometry is lost.
+    fn file_pcurves(&self, ctx: &LoopContext<'_>, edge: usize) -> Vec<Arc<dyn Curve2>> {
+        let (Some(scale), record) = (ctx.pcurve_scale, &self.edges[edge]) else {
+            return Vec::new();
+        };
+        if !self.use_file_pcurves {
+            return Vec::new();
+        }
+        let graph = self.reader.graph;
+        let Some(geometry) = graph.root(record.geometry_id) else {
+            return Vec::new();
+        };
+        if !(geometry.record.has("SURFACE_CURVE") || geometry.record.has("SEAM_CURVE")) {
+            return Vec::new();
+        }
+        let mut out: Vec<Arc<dyn Curve2>> = Vec::new();
+        for id in geometry.ref_list(2).unwrap_or_default() {
+            let Some(pcurve) = graph.root(id).filter(|e| e.record.has("PCURVE")) else {
+                continue;
+            };
+            if !pcurve
+                .reference(1)
+                .is_ok_and(|basis| ctx.surface_ids.contains(&basis))
+            {
+                continue;
+            }
+            if let Ok(inner) = self.reader.pcurve_2d(&pcurve) {
+                out.push(Arc::new(MappedPCurve {
+                    inner,
+                    scale,
+                    rate: record.rate,
+                }));
+            }
+        }
+        out
+    }
+
     /// Fits the p-curves of one loop, each entry starting where the previous one ended.
     fn fit_loop(
         &mut self,
@@ -583,6 +697,7 @@ impl<'g, 'a> Builder<'g, 'a> {
             } else {
                 None
             };
+            let file_pcurves = self.file_pcurves(ctx, edge);
             let input = FitInput {
                 surface,
                 guess: ctx.guess,
@@ -593,6 +708,8 @@ impl<'g, 'a> Builder<'g, 'a> {
                 snap_end,
                 snap_limit: limit,
                 closed: ctx.closed,
+                file_pcurves: &file_pcurves,
+                agreement: self.fit_tolerance,
             };
             let pc = fit(&input).map_err(|reason| StepError::PCurve {
                 face: ctx.face,
@@ -609,6 +726,11 @@ impl<'g, 'a> Builder<'g, 'a> {
                 });
             }
             self.worst_gap = self.worst_gap.max(pc.gap + pc.fit_error);
+            if pc.from_file {
+                self.pcurves.from_file += 1;
+            } else {
+                self.pcurves.projected += 1;
+            }
             let d = pc.curve.domain();
             let (start_t, end_t) = if reversed {
                 (d.max, d.min)
@@ -762,6 +884,8 @@ impl<'g, 'a> Builder<'g, 'a> {
                 .map_err(|g| f.geometry(g))?;
         self.edges.push(EdgeRecord {
             step_id: f.id,
+            geometry_id: 0,
+            rate: 1.0,
             curve: Box::new(seam),
             ends: [va, vb],
             uses: Vec::new(),
@@ -820,6 +944,7 @@ impl<'g, 'a> Builder<'g, 'a> {
                 name,
                 id: self.solid_id,
                 solid,
+                pcurves: self.pcurves,
             });
         }
         validate(&solid).map_err(|source| StepError::Topology {
@@ -832,6 +957,7 @@ impl<'g, 'a> Builder<'g, 'a> {
             name,
             id: self.solid_id,
             solid,
+            pcurves: self.pcurves,
         })
     }
 }

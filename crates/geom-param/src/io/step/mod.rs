@@ -20,7 +20,9 @@ pub mod part21;
 pub(crate) mod pcurve;
 pub(crate) mod units;
 
-pub use brep::{DEFAULT_UNCERTAINTY_MM, MAX_FACES, MAX_HEAL_FACTOR, StepSolid, UNCERTAINTY_FLOOR};
+pub use brep::{
+    DEFAULT_UNCERTAINTY_MM, MAX_FACES, MAX_HEAL_FACTOR, PCurveCount, StepSolid, UNCERTAINTY_FLOOR,
+};
 pub use error::StepError;
 
 use crate::io::step::graph::Graph;

@@ -1,15 +1,18 @@
-//! P-curves computed by projecting an edge's 3D curve onto a face's surface: samples projected
-//! by Newton's method on the squared distance, periodic parameters unwrapped along the edge and
-//! next to the loop's previous entry, then the simplest p-curve that meets the tolerance: a
-//! line or a circle in (u, v) recognised from the samples, else a piecewise cubic Hermite
-//! B-spline through the projected points with their (u, v) tangents, refined until its
-//! midpoints are within the fit tolerance.
+//! P-curves of an edge on a face: samples of the edge's 3D curve projected onto the surface by
+//! Newton's method on the squared distance, periodic parameters unwrapped along the edge and
+//! next to the loop's previous entry; then the file's own PCURVE where one agrees with those
+//! samples within the fit tolerance (mapped to the model's parameters, [`MappedPCurve`]),
+//! else the simplest p-curve that meets the tolerance: a line or a circle in (u, v)
+//! recognised from the samples, else a piecewise cubic Hermite B-spline through the
+//! projected points with their (u, v) tangents, refined until its midpoints are within the
+//! fit tolerance.
 
 use crate::curves::curve::{Curve, ParamRange};
-use crate::curves::curve2::{Circle2, Curve2};
+use crate::curves::curve2::{Circle2, Curve2, Curve2Point};
 use crate::curves::nurbs_curve2::NurbsCurve2;
 use crate::surfaces::surface::Surface;
 use glam::{DVec2, DVec3};
+use std::sync::Arc;
 
 /// Newton steps of one projection.
 const NEWTON_STEPS: usize = 40;
@@ -131,6 +134,8 @@ pub(crate) struct FittedPCurve {
     pub gap: f64,
     /// Largest distance between S(c(t)) and the edge's projection at the check points (mm).
     pub fit_error: f64,
+    /// True when the curve is the file's own p-curve (placed, not fitted).
+    pub from_file: bool,
 }
 
 /// The inputs of one fit.
@@ -156,6 +161,86 @@ pub(crate) struct FitInput<'a> {
     /// The parameters in which the surface closes without being periodic (S(min, v) =
     /// S(max, v): a closed B-spline surface, an extrusion of a closed B-spline curve).
     pub closed: [bool; 2],
+    /// The file's own p-curves of this edge on this surface (PCURVE entities), mapped to the
+    /// model's (u, v) and the edge's parameter but not to a period ([`MappedPCurve`]).
+    pub file_pcurves: &'a [Arc<dyn Curve2>],
+    /// How far (mm, on the surface) a file p-curve may lie from the projection and be used:
+    /// the file's uncertainty.
+    pub agreement: f64,
+}
+
+/// A file's p-curve in the model's terms: c(t) = scale ⊙ c_file(rate · t), where `scale`
+/// turns the file's (u, v) units into the model's (lengths to mm, angles to radians, the
+/// cone's v from the axis to the ruling, a reversed face's v negated) and `rate` the model's
+/// edge parameter into the file's (±1 for the edge's sense, over radians per angle unit for
+/// a conic).
+#[derive(Debug)]
+pub(crate) struct MappedPCurve {
+    /// The file's curve.
+    pub inner: Box<dyn Curve2>,
+    /// Factors on (u, v).
+    pub scale: DVec2,
+    /// dt_file / dt.
+    pub rate: f64,
+}
+
+impl Curve2 for MappedPCurve {
+    fn eval(&self, t: f64) -> Curve2Point {
+        let c = self.inner.eval(self.rate * t);
+        Curve2Point {
+            point: self.scale * c.point,
+            d1: self.scale * c.d1 * self.rate,
+            d2: self.scale * c.d2 * (self.rate * self.rate),
+        }
+    }
+
+    fn domain(&self) -> ParamRange {
+        let d = self.inner.domain();
+        let (a, b) = (d.min / self.rate, d.max / self.rate);
+        ParamRange {
+            min: a.min(b),
+            max: a.max(b),
+            periodic: false,
+        }
+    }
+}
+
+/// A file p-curve placed where the projection put the edge: moved by whole periods, its ends
+/// blended onto the loop's (snapped) end points and equal to them bit for bit at t_min and
+/// t_max, like [`Segment2`].
+#[derive(Debug)]
+struct FromFile {
+    inner: Arc<dyn Curve2>,
+    shift: DVec2,
+    e0: DVec2,
+    e1: DVec2,
+    p0: DVec2,
+    p1: DVec2,
+    range: ParamRange,
+}
+
+impl Curve2 for FromFile {
+    fn eval(&self, t: f64) -> Curve2Point {
+        let c = self.inner.eval(t);
+        let span = self.range.span();
+        let s = (t - self.range.min) / span;
+        let point = if t == self.range.min {
+            self.p0
+        } else if t == self.range.max {
+            self.p1
+        } else {
+            c.point + self.shift + (1.0 - s) * self.e0 + s * self.e1
+        };
+        Curve2Point {
+            point,
+            d1: c.d1 + (self.e1 - self.e0) / span,
+            d2: c.d2,
+        }
+    }
+
+    fn domain(&self) -> ParamRange {
+        self.range
+    }
 }
 
 /// A surface closed but not periodic in some parameter, seen as periodic there: projections
@@ -388,8 +473,38 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
             }
             worst
         };
-        // A line in (u, v).
         let (t0, t1) = (ts[0], ts[count - 1]);
+        // The file's own p-curve, where it agrees with the projection within the file's
+        // uncertainty at every sample: exact where the fits below approximate. Where none
+        // agrees (another convention, a p-curve on a neighbouring surface, a careless
+        // exporter) the projection is the truth: the 3D curve defines the edge.
+        for candidate in input.file_pcurves {
+            let c0 = candidate.eval(t0).point;
+            let c1 = candidate.eval(t1).point;
+            if !(c0.is_finite() && c1.is_finite()) {
+                continue;
+            }
+            let shift = wrap_near(c0, uvs[0], periods) - c0;
+            let placed = FromFile {
+                inner: Arc::clone(candidate),
+                shift,
+                e0: uvs[0] - (c0 + shift),
+                e1: uvs[count - 1] - (c1 + shift),
+                p0: uvs[0],
+                p1: uvs[count - 1],
+                range: edge_range,
+            };
+            let e = error_of(&placed);
+            if e <= input.agreement {
+                return Ok(FittedPCurve {
+                    curve: Box::new(placed),
+                    gap,
+                    fit_error: e,
+                    from_file: true,
+                });
+            }
+        }
+        // A line in (u, v).
         let line = Segment2 {
             start: uvs[0],
             end: uvs[count - 1],
@@ -401,6 +516,7 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                 curve: Box::new(line),
                 gap,
                 fit_error: e,
+                from_file: false,
             });
         }
         // A circle in (u, v) with its angle affine in t at unit rate.
@@ -422,6 +538,7 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                     curve: Box::new(circle),
                     gap,
                     fit_error: e,
+                    from_file: false,
                 });
             }
         }
@@ -433,6 +550,7 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                 curve: Box::new(hermite),
                 gap,
                 fit_error: e,
+                from_file: false,
             });
         }
         if segments >= MAX_SEGMENTS {
