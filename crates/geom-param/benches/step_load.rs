@@ -7,10 +7,18 @@ use geom_param::step::read_step;
 use geom_param::{MeshOptions, ObjectModel};
 use std::time::Duration;
 
-const FILES: [&str; 3] = [
+const FILES: [&str; 11] = [
     "red_cube_blue_cylinder.step",
     "solidworks_base_interface.step",
     "solidworks_featuretype.step",
+    "solidworks_box_sides.step",
+    "catia_v5_l_bracket.stp",
+    "unigraphics_l_bracket.stp",
+    "ideas_block_hole.stp",
+    "proe_cube_inch.stp",
+    "inventor_io1.stp",
+    "autocad_io1.stp",
+    "onshape_cube_hole.step",
 ];
 
 fn bench(c: &mut Criterion) {

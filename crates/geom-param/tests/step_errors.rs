@@ -309,3 +309,23 @@ fn duplicate_id_and_missing_solid() {
     ));
     assert_eq!(e, StepError::NoSolid);
 }
+
+#[test]
+fn euclid_spindle_torus_is_refused_naming_its_surface() {
+    // Euclid (Matra Datavision, 1998), from OCCT's test data: a screw whose TOROIDAL_SURFACE
+    // #482 has a minor radius (54.87 mm) above its major one (8.25 mm), a self-intersecting
+    // torus that STEP writes as DEGENERATE_TOROIDAL_SURFACE; the reader does not guess which
+    // part of it is meant.
+    let path = format!(
+        "{}/../../fixtures/step/euclid_screw.stp",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let bytes = std::fs::read(&path).expect("fixture");
+    let e = read_step(&bytes).expect_err("refused");
+    match &e {
+        StepError::Geometry { id, entity, .. } => {
+            assert_eq!((*id, entity.as_str()), (482, "TOROIDAL_SURFACE"), "{e}");
+        }
+        other => panic!("{other}"),
+    }
+}

@@ -430,3 +430,217 @@ fn brep_with_voids_flips_its_void_shells() {
     let measured = measure(&m);
     assert_volume("cube less cylinder", &measured, 1000.0 - PI * 25.0 * 10.0);
 }
+
+/// |A_mesh − A| for a solid whose curved faces are cylinders of radius at least `radius`:
+/// each face loses at most 1 − cos of the normal deviation (cos θ >= 1 − 2ε/r), plus ε along
+/// each curved edge of total length `curved_edges`.
+fn cylinder_area_bound(m: &Measured, area: f64, radius: f64, curved_edges: f64) -> f64 {
+    area * 2.0 * m.chordal_error / radius + 2.0 * curved_edges * m.chordal_error + 1e-9 * area
+}
+
+#[test]
+fn proe_inch_cube_matches_its_closed_form() {
+    // Pro/ENGINEER 2001 (CAx-IF c1), lengths in inches (a CONVERSION_BASED_UNIT), the
+    // uncertainty a complex LENGTH_MEASURE_WITH_UNIT, the solid also listed by a
+    // SHELL_BASED_SURFACE_MODEL (read once): an 80 in = 2032 mm cube.
+    let solids = read("proe_cube_inch.stp");
+    assert_eq!(
+        solids.len(),
+        1,
+        "the surface model's shell is the solid's own"
+    );
+    let s = solids.into_iter().next().expect("one solid");
+    let extent = s
+        .solid
+        .vertices
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v.point), hi.max(v.point))
+        });
+    assert!(
+        ((extent.1 - extent.0) - DVec3::splat(2032.0))
+            .abs()
+            .max_element()
+            < 1e-9
+    );
+    let m = model(s, 0.5);
+    assert_watertight("proe cube", &m);
+    let measured = measure(&m);
+    assert_volume("proe cube", &measured, 2032.0_f64.powi(3));
+    let area = 6.0 * 2032.0_f64.powi(2);
+    assert!(
+        (measured.area - area).abs() <= 1e-9 * area,
+        "{}",
+        measured.area
+    );
+}
+
+#[test]
+fn ideas_block_with_a_bspline_hole_matches_its_closed_form() {
+    // I-DEAS Master Series 9 (CAx-IF gd1), inches: a 3 x 2 x 1 in block with a through hole
+    // of radius 0.5 in about the axis x = 1.5, y = 1 in, written as a closed rational
+    // B-spline surface (QUASI_UNIFORM knots, weights 1 and 1/2: an exact circle) whose seam
+    // edges the reader places on either side of the closed parameter.
+    let solids = read("ideas_block_hole.stp");
+    let s = solids.into_iter().next().expect("one solid");
+    let m = model(s, 0.01);
+    assert_watertight("ideas block", &m);
+    let measured = measure(&m);
+    let inch: f64 = 25.4;
+    let volume = (6.0 - PI * 0.25) * inch.powi(3);
+    assert_volume("ideas block", &measured, volume);
+    let area = (2.0 * (6.0 - PI * 0.25) + 2.0 * (3.0 + 2.0) + 2.0 * PI * 0.5) * inch * inch;
+    let bound = cylinder_area_bound(&measured, area, 0.5 * inch, 2.0 * 2.0 * PI * 0.5 * inch);
+    assert!(
+        (measured.area - area).abs() <= bound,
+        "area {} vs {area} (bound {bound})",
+        measured.area
+    );
+}
+
+#[test]
+fn onshape_block_with_a_hole_matches_its_closed_form() {
+    // Onshape (Parasolid) export in metres: a 2 x 1 x 1 in block with a through hole of
+    // radius 1/4 in, 1 in long.
+    let solids = read("onshape_cube_hole.step");
+    let s = solids.into_iter().next().expect("one solid");
+    let m = model(s, 0.01);
+    assert_watertight("onshape block", &m);
+    let measured = measure(&m);
+    let (w, h, r) = (50.8, 25.4, 6.35);
+    let volume = w * h * h - PI * r * r * h;
+    assert_volume("onshape block", &measured, volume);
+    let area = 4.0 * w * h + 2.0 * h * h - 2.0 * PI * r * r + 2.0 * PI * r * h;
+    let bound = cylinder_area_bound(&measured, area, r, 2.0 * 2.0 * PI * r);
+    assert!(
+        (measured.area - area).abs() <= bound,
+        "area {} vs {area} (bound {bound})",
+        measured.area
+    );
+}
+
+/// Volume of one solid of a file meshed at `tolerance`, with its bound A ε.
+fn volume_with_bound(file: &str, tolerance: f64) -> (f64, f64) {
+    let solids = read(file);
+    let s = solids.into_iter().next().expect("a solid");
+    let name = format!("{file}: {}", s.name);
+    let m = model(s, tolerance);
+    assert_watertight(&name, &m);
+    let measured = measure(&m);
+    (
+        measured.volume,
+        measured.area * measured.chordal_error + 1e-9 * measured.volume,
+    )
+}
+
+#[test]
+fn one_part_exported_by_two_systems_has_one_volume() {
+    // The same design written by two CAD systems through different kernels: the CAx-IF
+    // AS1 L-bracket from CATIA V5 R13 and from Unigraphics (Theorem's translator, B-spline
+    // surfaces throughout), the IO1 flange from Autodesk Inventor 2.0 and AutoCAD 2000. Each
+    // mesh is within A ε of its exact volume, so the two agree within the sum of the bounds.
+    for (a, b) in [
+        ("catia_v5_l_bracket.stp", "unigraphics_l_bracket.stp"),
+        ("inventor_io1.stp", "autocad_io1.stp"),
+    ] {
+        let (va, ba) = volume_with_bound(a, 0.01);
+        let (vb, bb) = volume_with_bound(b, 0.01);
+        assert!(
+            (va - vb).abs() <= ba + bb,
+            "{a}: {va} vs {b}: {vb} (bound {})",
+            ba + bb
+        );
+        assert!(va > 0.0 && vb > 0.0);
+    }
+}
+
+#[test]
+fn solidworks_box_sides_reads_its_six_solids_watertight() {
+    // SolidWorks 2015, six bodies in inches. Regression: a loop's last p-curve ended one
+    // rounding unit from its first one's start, which put the closing point on the first
+    // segment (a false self-intersection); line p-curves now pass through their snapped ends
+    // bit for bit.
+    let solids = read("solidworks_box_sides.step");
+    let names: Vec<&str> = solids.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "Cut-Extrude5",
+            "Cut-Extrude6",
+            "Boss-Extrude2",
+            "Cut-Extrude3",
+            "Mirror3",
+            "Cut-Extrude1"
+        ]
+    );
+    for s in solids {
+        let name = s.name.clone();
+        let m = model(s, 0.05);
+        assert_watertight(&name, &m);
+        assert!(measure(&m).volume > 0.0, "{name}");
+    }
+}
+
+#[test]
+fn cascade_pcurves_are_read_where_they_agree_with_the_projection() {
+    // Matra Datavision's CASCADE 4.0 (OpenCASCADE's ancestor, CAx-IF io1): every edge a
+    // SURFACE_CURVE or SEAM_CURVE with a PCURVE per face, on planes, 11 cylinders and a 45°
+    // cone (whose v the model measures along the ruling, STEP along the axis). The lines and
+    // circles are taken from the file; the six rational B-spline circles on planes carry
+    // another parameter than the edge's angle and are projected.
+    let text = String::from_utf8(fixture("cascade_io1.stp")).expect("ASCII");
+    let with_file = read_step(text.as_bytes()).expect("reads");
+    let [s] = with_file.as_slice() else {
+        panic!("one solid");
+    };
+    assert_eq!(
+        (s.pcurves.from_file, s.pcurves.projected),
+        (64, 6),
+        "{:?}",
+        s.pcurves
+    );
+    // The same file with its PCURVE entities renamed: every p-curve projected.
+    let projected = read_step(text.replace("PCURVE(", "XPCURVE(").as_bytes()).expect("reads");
+    let [p] = projected.as_slice() else {
+        panic!("one solid");
+    };
+    assert_eq!((p.pcurves.from_file, p.pcurves.projected), (0, 70));
+    // Both p-curves of every edge use land on the same surface points (the file's and the
+    // fitted ones meet the edge within the fit tolerance, a quarter of the uncertainty).
+    let tolerance = 0.5 * s.solid.tolerance;
+    for (fi, (fa, fb)) in s.solid.faces.iter().zip(&p.solid.faces).enumerate() {
+        let (Some(ta), Some(tb)) = (&fa.trim, &fb.trim) else {
+            panic!("trimmed faces");
+        };
+        let [ru, rv] = fa.surface.domain();
+        for (la, lb) in ta.loops.iter().zip(&tb.loops) {
+            for (ea, eb) in la.entries.iter().zip(&lb.entries) {
+                assert_eq!(ea.edge, eb.edge);
+                let d = ea.pcurve.domain();
+                for k in 0..=32 {
+                    let t = d.min + d.span() * f64::from(k) / 32.0;
+                    let on = |c: &dyn geom_param::Curve2| {
+                        let q = c.eval(t).point;
+                        fa.surface.eval(ru.normalize(q.x), rv.normalize(q.y)).point
+                    };
+                    let gap = on(ea.pcurve.as_ref()).distance(on(eb.pcurve.as_ref()));
+                    assert!(gap <= tolerance, "face {fi}: {gap} mm at t = {t}");
+                }
+            }
+        }
+    }
+    // And the solid is the same: volumes within the meshes' bounds.
+    let volume = |solids: Vec<StepSolid>| {
+        let s = solids.into_iter().next().expect("one solid");
+        let m = model(s, 0.01);
+        assert_watertight("cascade io1", &m);
+        let measured = measure(&m);
+        (
+            measured.volume,
+            measured.area * measured.chordal_error + 1e-9 * measured.volume,
+        )
+    };
+    let (va, ba) = volume(with_file);
+    let (vb, bb) = volume(projected);
+    assert!((va - vb).abs() <= ba + bb, "{va} vs {vb}");
+}

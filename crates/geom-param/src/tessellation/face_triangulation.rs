@@ -129,6 +129,21 @@ pub(crate) fn triangulate_face(
     Ok(mesh)
 }
 
+/// The spade point of a plane-map point, with coordinates too small for spade (below
+/// `spade::MIN_ALLOWED_VALUE`, 2^-142, which it rejects as `TooSmall`) flushed to zero:
+/// rounding noise such as 1e-300 next to coordinates of order 1 (real STEP exports write
+/// such values, e.g. the CAx-IF `xr1-tu-*.stp` and HiCAD files).
+fn spade_point(q: DVec2) -> Point2<f64> {
+    let flush = |x: f64| {
+        if x.abs() < spade::MIN_ALLOWED_VALUE {
+            0.0
+        } else {
+            x
+        }
+    };
+    Point2::new(flush(q.x), flush(q.y))
+}
+
 struct FaceTriangulation<'a, 't> {
     input: &'a TriangulationInput<'a>,
     map: PlaneMap,
@@ -153,7 +168,7 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
             for p in l {
                 let q = map.plane_point(p.uv);
                 let h = cdt
-                    .insert(Point2::new(q.x, q.y))
+                    .insert(spade_point(q))
                     .map_err(|e| format!("loop {li} has a point spade rejects: {e:?}"))?;
                 if h.index() != vertices.len() {
                     return Err(format!(
@@ -211,7 +226,7 @@ impl<'a, 't> FaceTriangulation<'a, 't> {
                         .map(|&i| self.cdt.vertex(vertex_handle(i)).position())
                         .fold(DVec2::ZERO, |s, p| s + DVec2::new(p.x, p.y))
                         / 3.0;
-                    bad.push(Point2::new(c.x, c.y));
+                    bad.push(spade_point(c));
                 }
             }
             if !any {

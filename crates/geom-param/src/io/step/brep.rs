@@ -3,10 +3,11 @@
 //! p-curves projected per face use, healing of the file's gaps within a bounded tolerance.
 
 use crate::curves::curve::{Curve, ParamRange};
+use crate::curves::curve2::Curve2;
 use crate::io::step::error::StepError;
 use crate::io::step::geometry::{CurveSpec, GeometryReader, SurfaceSpec, range};
 use crate::io::step::graph::{Entity, Graph};
-use crate::io::step::pcurve::{FitInput, fit};
+use crate::io::step::pcurve::{FitInput, MappedPCurve, fit};
 use crate::io::step::units::{context_of, units_of};
 use crate::object_model::{MeshOptions, ModelError, ObjectModel};
 use crate::surfaces::reversed_surface::ReversedSurface;
@@ -21,6 +22,7 @@ use crate::topology::validate::validate;
 use glam::{DVec2, DVec3};
 use std::collections::HashMap;
 use std::f64::consts::TAU;
+use std::sync::Arc;
 
 /// Uncertainty assumed when the file states none (mm).
 pub const DEFAULT_UNCERTAINTY_MM: f64 = 1e-6;
@@ -29,6 +31,12 @@ pub const DEFAULT_UNCERTAINTY_MM: f64 = 1e-6;
 pub const MAX_HEAL_FACTOR: f64 = 1000.0;
 /// The p-curve fit's share of the file's uncertainty.
 const FIT_SHARE: f64 = 0.25;
+/// The least uncertainty used, relative to the model's extent (largest coordinate, mm): a
+/// file may state an uncertainty (1e-13 mm in some CAx-IF test files) below what a surface
+/// evaluated in f64 at that distance from the origin can resolve (about 1e-16 of it per
+/// rounding, times the conditioning of a projection); fits and gaps are measured against
+/// the larger of the two, so exact geometry written with rounding is not refused.
+pub const UNCERTAINTY_FLOOR: f64 = 4e-12;
 /// The healed tolerance's margin over the largest measured gap.
 const HEAL_MARGIN: f64 = 2.0;
 /// Margin of a free parameter's domain around the face's loops, relative to their extent.
@@ -41,10 +49,13 @@ pub const MAX_FACES: usize = 100_000;
 pub struct StepSolid {
     /// The B-rep's name (its `name` attribute), or `#id` when empty.
     pub name: String,
-    /// The `#id` of its MANIFOLD_SOLID_BREP or BREP_WITH_VOIDS.
+    /// The `#id` of its MANIFOLD_SOLID_BREP or BREP_WITH_VOIDS, or of the CLOSED_SHELL a
+    /// SHELL_BASED_SURFACE_MODEL lists.
     pub id: u64,
     /// The solid, in millimetres, validated, its convexity classified.
     pub solid: Solid,
+    /// Where its p-curves came from (the file's PCURVEs or projections).
+    pub pcurves: PCurveCount,
 }
 
 impl StepSolid {
@@ -61,6 +72,12 @@ impl StepSolid {
 struct EdgeRecord {
     /// The EDGE_CURVE's id.
     step_id: u64,
+    /// Its edge_geometry's id (a SURFACE_CURVE or SEAM_CURVE lists the file's p-curves);
+    /// 0 for a seam the reader added.
+    geometry_id: u64,
+    /// dt_file / dt of the edge's parameter: ±1 for its sense, over radians per angle unit
+    /// for a conic (whose file parameter is an angle).
+    rate: f64,
     curve: Box<dyn Curve>,
     ends: [u64; 2],
     uses: Vec<EdgeUse>,
@@ -76,18 +93,53 @@ struct Builder<'g, 'a> {
     edge_index: HashMap<u64, usize>,
     /// Largest gap found (mm): edge to face, edge end to vertex, loop closure.
     worst_gap: f64,
+    /// P-curves taken from the file's PCURVEs, and projected.
+    pcurves: PCurveCount,
+    /// Whether the file's PCURVEs are tried before fitting a projection.
+    use_file_pcurves: bool,
 }
 
-/// Reads solid `root` (a MANIFOLD_SOLID_BREP or BREP_WITH_VOIDS).
-pub(crate) fn read_solid(graph: &Graph<'_>, root: u64) -> Result<StepSolid, StepError> {
+/// How a solid's p-curves were made.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PCurveCount {
+    /// The file's own PCURVEs, which agreed with the projection within the uncertainty.
+    pub from_file: usize,
+    /// Fitted to the projection of the 3D edge (no PCURVE in the file, one on another
+    /// surface, of a type or surface the reader does not map, or one that disagreed).
+    pub projected: usize,
+}
+
+/// Reads solid `root` (a MANIFOLD_SOLID_BREP, a BREP_WITH_VOIDS, or a CLOSED_SHELL of a
+/// surface model), whose representation lists `item` (the solid itself, or the
+/// SHELL_BASED_SURFACE_MODEL holding the shell).
+pub(crate) fn read_solid(graph: &Graph<'_>, root: u64, item: u64) -> Result<StepSolid, StepError> {
+    match read_solid_with(graph, root, item, true) {
+        // The file's p-curves agree with the edges within the fit tolerance, but where a
+        // loop is tight (a tangent arc along a line) that much can make it cross itself where
+        // the projections would not: the solid is read again from projections alone.
+        Err(StepError::Topology { .. }) => read_solid_with(graph, root, item, false),
+        other => other,
+    }
+}
+
+/// [`read_solid`], with the file's PCURVEs used where they agree or never.
+fn read_solid_with(
+    graph: &Graph<'_>,
+    root: u64,
+    item: u64,
+    use_file_pcurves: bool,
+) -> Result<StepSolid, StepError> {
     let top = graph.root(root).ok_or(StepError::NoSolid)?;
-    let context = context_of(graph, root).ok_or(StepError::Units {
+    let context = context_of(graph, item).ok_or(StepError::Units {
         id: root,
         reason: "no representation context with units holds the solid".into(),
     })?;
     let units = units_of(graph, context)?;
     let uncertainty = units.uncertainty_mm.unwrap_or(DEFAULT_UNCERTAINTY_MM);
-    let name_attr = top.string(0);
+    let mut name_attr = top.string(0);
+    if (name_attr.trim().is_empty() || name_attr == "NONE") && item != root {
+        name_attr = graph.root(item).map(|m| m.string(0)).unwrap_or_default();
+    }
     let name = if name_attr.trim().is_empty() || name_attr == "NONE" {
         format!("#{root}")
     } else {
@@ -106,9 +158,16 @@ pub(crate) fn read_solid(graph: &Graph<'_>, root: u64) -> Result<StepSolid, Step
         edges: Vec::new(),
         edge_index: HashMap::new(),
         worst_gap: 0.0,
+        pcurves: PCurveCount::default(),
+        use_file_pcurves,
     };
     // Shells: (closed shell, faces flipped).
-    let mut shells = vec![(top.reference(1)?, false)];
+    let outer = if top.record.has("CLOSED_SHELL") {
+        root
+    } else {
+        top.reference(1)?
+    };
+    let mut shells = vec![(outer, false)];
     if top.record.has("BREP_WITH_VOIDS") {
         for void in top.ref_list(2)? {
             let v = graph.get_as(&top, void, "ORIENTED_CLOSED_SHELL", "a void shell")?;
@@ -147,6 +206,8 @@ pub(crate) fn read_solid(graph: &Graph<'_>, root: u64) -> Result<StepSolid, Step
         .values()
         .fold(1.0_f64, |m, p| m.max(p.abs().max_element()));
     let big = 8.0 * extent;
+    builder.uncertainty = builder.uncertainty.max(UNCERTAINTY_FLOOR * extent);
+    builder.fit_tolerance = FIT_SHARE * builder.uncertainty;
     for (fi, p) in pending.into_iter().enumerate() {
         let face_id = FaceId(u32::try_from(fi).map_err(|_| StepError::TooLarge {
             what: "faces of one solid",
@@ -172,6 +233,39 @@ struct LoopContext<'s> {
     surface: &'s dyn Surface,
     guess: &'s dyn Fn(DVec3) -> Option<[f64; 2]>,
     periods: [f64; 2],
+    /// Parameters in which the surface closes without being periodic.
+    closed: [bool; 2],
+    /// The ids a PCURVE of this face names as its basis surface.
+    surface_ids: &'s [u64],
+    /// File (u, v) to model (u, v) factors, a reversed face's v negated; `None` where the
+    /// file's p-curves are not mapped.
+    pcurve_scale: Option<DVec2>,
+}
+
+/// Samples along each side of the domain compared with the opposite side to find a surface
+/// closed in that parameter.
+const CLOSED_SAMPLES: usize = 9;
+
+/// Whether the surface closes in each non-periodic parameter: S(min, t) and S(max, t) (or
+/// S(t, min) and S(t, max)) within `tolerance` at [`CLOSED_SAMPLES`] values of the other
+/// parameter.
+fn closed_parameters(surface: &dyn Surface, tolerance: f64) -> [bool; 2] {
+    let d = surface.domain();
+    [0, 1].map(|i| {
+        if d[i].periodic {
+            return false;
+        }
+        let o = d[1 - i];
+        (0..CLOSED_SAMPLES).all(|k| {
+            let t = o.min + o.span() * k as f64 / (CLOSED_SAMPLES - 1) as f64;
+            let (a, b) = if i == 0 {
+                (surface.eval(d[0].min, t), surface.eval(d[0].max, t))
+            } else {
+                (surface.eval(t, d[1].min), surface.eval(t, d[1].max))
+            };
+            a.point.distance(b.point) <= tolerance
+        })
+    })
 }
 
 /// One loop's p-curves.
@@ -187,6 +281,9 @@ struct FittedLoop {
 /// A face read but not yet built: its surface, sense and loops of (edge index, reversed).
 struct PendingFace<'a> {
     entity: Entity<'a>,
+    /// The face's surface and, through RECTANGULAR_TRIMMED_SURFACEs, its basis: the ids a
+    /// PCURVE of this face may name.
+    surface_ids: Vec<u64>,
     surface: SurfaceSpec,
     sense: bool,
     loops: Vec<ReadLoop>,
@@ -216,7 +313,8 @@ impl<'g, 'a> Builder<'g, 'a> {
             .get_as(from, id, "EDGE_CURVE", "an oriented edge's edge")?;
         let (v1, v2) = (e.reference(1)?, e.reference(2)?);
         let (p1, p2) = (self.vertex(&e, v1)?, self.vertex(&e, v2)?);
-        let spec = self.reader.curve(&e, e.reference(3)?)?;
+        let geometry_id = e.reference(3)?;
+        let spec = self.reader.curve(&e, geometry_id)?;
         let mut sense = if e.boolean(4)? { 1.0 } else { -1.0 };
         // A line runs from its first vertex to its second whatever same_sense says (some
         // exporters write it inconsistently for lines; the vertices decide).
@@ -258,8 +356,25 @@ impl<'g, 'a> Builder<'g, 'a> {
                         (-d.max, -d.min)
                     }
                 } else {
-                    let a = nearest_param(natural.as_ref(), p1);
-                    let b = nearest_param(natural.as_ref(), p2);
+                    let mut a = nearest_param(natural.as_ref(), p1);
+                    let mut b = nearest_param(natural.as_ref(), p2);
+                    // On a closed B-spline (C(min) = C(max)) a vertex at the closure point
+                    // has two parameters: take the one that runs the edge in its sense.
+                    let closure = natural.eval(d.min).point;
+                    let ring = closure.distance(natural.eval(d.max).point) <= self.uncertainty;
+                    if ring && sense * a >= sense * b {
+                        let (first, last) = if sense > 0.0 {
+                            (d.min, d.max)
+                        } else {
+                            (d.max, d.min)
+                        };
+                        if p1.distance(closure) <= self.uncertainty {
+                            a = first;
+                        }
+                        if p2.distance(closure) <= self.uncertainty {
+                            b = last;
+                        }
+                    }
                     (sense * a, sense * b)
                 }
             }
@@ -278,8 +393,14 @@ impl<'g, 'a> Builder<'g, 'a> {
                 .worst_gap
                 .max(if gap.is_nan() { f64::INFINITY } else { gap });
         }
+        let rate = match spec {
+            CurveSpec::Circle { .. } | CurveSpec::Ellipse { .. } => sense / self.reader.angle,
+            _ => sense,
+        };
         self.edges.push(EdgeRecord {
             step_id: id,
+            geometry_id,
+            rate,
             curve,
             ends: [v1, v2],
             uses: Vec::new(),
@@ -300,6 +421,16 @@ impl<'g, 'a> Builder<'g, 'a> {
             ..*face
         };
         let surface = self.reader.surface(&f, f.reference(2)?)?;
+        let mut surface_ids = vec![f.reference(2)?];
+        while let Some(t) = graph
+            .root(*surface_ids.last().unwrap_or(&0))
+            .filter(|t| t.record.has("RECTANGULAR_TRIMMED_SURFACE") && surface_ids.len() < 8)
+        {
+            match t.reference(1) {
+                Ok(basis) => surface_ids.push(basis),
+                Err(_) => break,
+            }
+        }
         let sense = f.boolean(3)? != flip;
         let mut loops = Vec::new();
         for b in f.ref_list(1)? {
@@ -340,6 +471,7 @@ impl<'g, 'a> Builder<'g, 'a> {
         }
         Ok(PendingFace {
             entity: f,
+            surface_ids,
             surface,
             sense,
             loops,
@@ -400,6 +532,12 @@ impl<'g, 'a> Builder<'g, 'a> {
             surface: surface.as_ref(),
             guess: &guess,
             periods,
+            closed: closed_parameters(surface.as_ref(), self.uncertainty),
+            surface_ids: &p.surface_ids,
+            pcurve_scale: p
+                .surface
+                .pcurve_scale(self.reader.scale, self.reader.angle)
+                .map(|k| if p.sense { k } else { DVec2::new(k.x, -k.y) }),
         };
         for (loop_id, entries) in &p.loops {
             let fitted = self.fit_loop(&fit_ctx, *loop_id, entries)?;
@@ -492,6 +630,47 @@ impl<'g, 'a> Builder<'g, 'a> {
         })
     }
 
+    /// The file's p-curves of `edge` on the face of `ctx` (the PCURVEs its SURFACE_CURVE or
+    /// SEAM_CURVE lists whose basis is the face's surface), mapped to the model's (u, v) and
+    /// edge parameter. A PCURVE the reader cannot read or map is left to the projection,
+    /// which the 3D curve (the edge's definition) always allows: the 2D curve is a redundant
+    /// image of it, and no geometry is lost.
+    fn file_pcurves(&self, ctx: &LoopContext<'_>, edge: usize) -> Vec<Arc<dyn Curve2>> {
+        let (Some(scale), record) = (ctx.pcurve_scale, &self.edges[edge]) else {
+            return Vec::new();
+        };
+        if !self.use_file_pcurves {
+            return Vec::new();
+        }
+        let graph = self.reader.graph;
+        let Some(geometry) = graph.root(record.geometry_id) else {
+            return Vec::new();
+        };
+        if !(geometry.record.has("SURFACE_CURVE") || geometry.record.has("SEAM_CURVE")) {
+            return Vec::new();
+        }
+        let mut out: Vec<Arc<dyn Curve2>> = Vec::new();
+        for id in geometry.ref_list(2).unwrap_or_default() {
+            let Some(pcurve) = graph.root(id).filter(|e| e.record.has("PCURVE")) else {
+                continue;
+            };
+            if !pcurve
+                .reference(1)
+                .is_ok_and(|basis| ctx.surface_ids.contains(&basis))
+            {
+                continue;
+            }
+            if let Ok(inner) = self.reader.pcurve_2d(&pcurve) {
+                out.push(Arc::new(MappedPCurve {
+                    inner,
+                    scale,
+                    rate: record.rate,
+                }));
+            }
+        }
+        out
+    }
+
     /// Fits the p-curves of one loop, each entry starting where the previous one ended.
     fn fit_loop(
         &mut self,
@@ -518,6 +697,7 @@ impl<'g, 'a> Builder<'g, 'a> {
             } else {
                 None
             };
+            let file_pcurves = self.file_pcurves(ctx, edge);
             let input = FitInput {
                 surface,
                 guess: ctx.guess,
@@ -527,6 +707,9 @@ impl<'g, 'a> Builder<'g, 'a> {
                 tolerance: self.fit_tolerance,
                 snap_end,
                 snap_limit: limit,
+                closed: ctx.closed,
+                file_pcurves: &file_pcurves,
+                agreement: self.fit_tolerance,
             };
             let pc = fit(&input).map_err(|reason| StepError::PCurve {
                 face: ctx.face,
@@ -543,6 +726,11 @@ impl<'g, 'a> Builder<'g, 'a> {
                 });
             }
             self.worst_gap = self.worst_gap.max(pc.gap + pc.fit_error);
+            if pc.from_file {
+                self.pcurves.from_file += 1;
+            } else {
+                self.pcurves.projected += 1;
+            }
             let d = pc.curve.domain();
             let (start_t, end_t) = if reversed {
                 (d.max, d.min)
@@ -696,6 +884,8 @@ impl<'g, 'a> Builder<'g, 'a> {
                 .map_err(|g| f.geometry(g))?;
         self.edges.push(EdgeRecord {
             step_id: f.id,
+            geometry_id: 0,
+            rate: 1.0,
             curve: Box::new(seam),
             ends: [va, vb],
             uses: Vec::new(),
@@ -754,6 +944,7 @@ impl<'g, 'a> Builder<'g, 'a> {
                 name,
                 id: self.solid_id,
                 solid,
+                pcurves: self.pcurves,
             });
         }
         validate(&solid).map_err(|source| StepError::Topology {
@@ -766,6 +957,7 @@ impl<'g, 'a> Builder<'g, 'a> {
             name,
             id: self.solid_id,
             solid,
+            pcurves: self.pcurves,
         })
     }
 }

@@ -108,8 +108,12 @@ pub enum StepError {
         /// What is wrong.
         reason: String,
     },
-    /// The file holds no `MANIFOLD_SOLID_BREP` or `BREP_WITH_VOIDS`.
-    #[error("the STEP file holds no solid (MANIFOLD_SOLID_BREP or BREP_WITH_VOIDS)")]
+    /// The file holds no `MANIFOLD_SOLID_BREP`, `BREP_WITH_VOIDS` or closed shell of a
+    /// `SHELL_BASED_SURFACE_MODEL` (a surface model of open shells is
+    /// [`StepError::Unsupported`] naming its first open shell).
+    #[error(
+        "the STEP file holds no solid (MANIFOLD_SOLID_BREP, BREP_WITH_VOIDS or a SHELL_BASED_SURFACE_MODEL's CLOSED_SHELL)"
+    )]
     NoSolid,
     /// An edge bounds other than two face positions of its solid: the shell is open (or not
     /// manifold).

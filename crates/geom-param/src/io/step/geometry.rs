@@ -4,9 +4,10 @@
 //! Parametrisations: every analytic surface of the model follows STEP (ISO 10303-42) in u, the
 //! angle about the placement's axis from its ref_direction, and in v for the cylinder (height
 //! along the axis), sphere (latitude in [−π/2, π/2]) and torus (angle around the tube); the
-//! cone's v runs along a ruling as in OpenCASCADE, where STEP's runs along the axis. The
-//! reader never copies a file's p-curves: it computes each from the 3D edge on our surface
-//! (module `pcurve`), so a difference in convention cannot misplace a trim.
+//! cone's v runs along a ruling as in OpenCASCADE, where STEP's runs along the axis
+//! ([`SurfaceSpec::pcurve_scale`] maps a file's (u, v) onto the model's). A file's PCURVE is
+//! used only where it agrees with the projection of the 3D edge onto our surface (module
+//! `pcurve`), so a difference in convention cannot misplace a trim.
 
 use crate::GeometryError;
 use crate::curves::circle_curve::CircleCurve;
@@ -26,7 +27,7 @@ use crate::surfaces::revolution_surface::RevolutionSurface;
 use crate::surfaces::sphere_surface::SphereSurface;
 use crate::surfaces::surface::Surface;
 use crate::surfaces::torus_surface::TorusSurface;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// Nesting of curve wrappers (SURFACE_CURVE, TRIMMED_CURVE, ...) followed.
@@ -239,19 +240,42 @@ impl GeometryReader<'_, '_> {
                         },
                     );
                 }
+                "QUASI_UNIFORM_CURVE" | "UNIFORM_CURVE" | "BEZIER_CURVE" => {
+                    let degree = degree_of(&e, 1)?;
+                    let points = self.points(&e, 2)?;
+                    let form = KnotForm::of(name).ok_or_else(|| e.unsupported("an edge curve"))?;
+                    let knots = form.knots(&e, degree, points.len())?;
+                    let weights = vec![1.0; points.len()];
+                    return checked_curve(
+                        &e,
+                        BSplineData {
+                            degree,
+                            knots,
+                            points,
+                            weights,
+                        },
+                    );
+                }
                 _ => return Err(e.unsupported("an edge curve")),
             }
         }
-        // The complex forms of a B-spline curve.
-        if let (Some(b), Some(k)) = (
-            r.part("B_SPLINE_CURVE"),
-            r.part("B_SPLINE_CURVE_WITH_KNOTS"),
-        ) {
+        // The complex forms of a B-spline curve: its knots given (B_SPLINE_CURVE_WITH_KNOTS)
+        // or implied by a uniform, quasi-uniform or Bezier form.
+        if let Some(b) = r.part("B_SPLINE_CURVE") {
             let be = Entity { params: b, ..e };
-            let ke = Entity { params: k, ..e };
             let degree = degree_of(&be, 0)?;
             let points = self.points(&be, 1)?;
-            let knots = expand_knots(&ke, 0, 1)?;
+            let knots = match r.part("B_SPLINE_CURVE_WITH_KNOTS") {
+                Some(k) => expand_knots(&Entity { params: k, ..e }, 0, 1)?,
+                None => {
+                    let form = ["QUASI_UNIFORM_CURVE", "UNIFORM_CURVE", "BEZIER_CURVE"]
+                        .into_iter()
+                        .find(|f| r.has(f))
+                        .and_then(KnotForm::of)
+                        .ok_or_else(|| e.unsupported("an edge curve"))?;
+                    form.knots(&e, degree, points.len())?
+                }
+            };
             let weights = match r.part("RATIONAL_B_SPLINE_CURVE") {
                 Some(w) => Entity { params: w, ..e }.real_list(0)?,
                 None => vec![1.0; points.len()],
@@ -267,6 +291,155 @@ impl GeometryReader<'_, '_> {
             );
         }
         Err(e.unsupported("an edge curve"))
+    }
+
+    /// A 2D point of a p-curve, in the surface's parameter units as the file writes them.
+    fn point2(&self, from: &Entity<'_>, id: u64) -> Result<DVec2, StepError> {
+        let e = self
+            .graph
+            .get_as(from, id, "CARTESIAN_POINT", "a p-curve's point")?;
+        let c = e.real_list(1)?;
+        if c.len() != 2 {
+            return Err(e.malformed(format!("{} coordinates, needs 2", c.len())));
+        }
+        Ok(DVec2::new(c[0], c[1]))
+    }
+
+    fn points2(&self, e: &Entity<'_>, i: usize) -> Result<Vec<DVec2>, StepError> {
+        e.ref_list(i)?
+            .into_iter()
+            .map(|p| self.point2(e, p))
+            .collect()
+    }
+
+    /// The 2D curve of a PCURVE (`pcurve`): the first item of its DEFINITIONAL_REPRESENTATION,
+    /// a LINE, CIRCLE or B-spline (simple or complex, with knots or an implied knot form), in
+    /// the file's parameter units and with the 3D curve's parameter.
+    ///
+    /// # Errors
+    /// [`StepError::Unsupported`] for other 2D curve types, and the errors of reading the
+    /// entities; the caller then projects the edge instead (a p-curve is a redundant image of
+    /// the edge's 3D curve, which defines it).
+    pub(crate) fn pcurve_2d(
+        &self,
+        pcurve: &Entity<'_>,
+    ) -> Result<Box<dyn crate::Curve2>, StepError> {
+        let rep = self.graph.get_as(
+            pcurve,
+            pcurve.reference(2)?,
+            "DEFINITIONAL_REPRESENTATION",
+            "a p-curve's representation",
+        )?;
+        let items = rep.ref_list(1)?;
+        let first = items.first().ok_or_else(|| rep.malformed("no item"))?;
+        let e = self.graph.get(&rep, *first)?;
+        let r = e.record;
+        let whole = ParamRange {
+            min: f64::NEG_INFINITY,
+            max: f64::INFINITY,
+            periodic: false,
+        };
+        if r.parts.len() == 1 {
+            match r.parts[0].0.as_str() {
+                "LINE" => {
+                    let origin = self.point2(&e, e.reference(1)?)?;
+                    let v = self
+                        .graph
+                        .get_as(&e, e.reference(2)?, "VECTOR", "a line's vector")?;
+                    let d = self
+                        .graph
+                        .get_as(&v, v.reference(1)?, "DIRECTION", "a direction")?;
+                    let c = d.real_list(1)?;
+                    let dir = match c.as_slice() {
+                        [x, y] => DVec2::new(*x, *y),
+                        _ => return Err(d.malformed("a 2D direction needs 2 components")),
+                    };
+                    let dir = dir
+                        .try_normalize()
+                        .ok_or_else(|| d.malformed("the direction is zero"))?;
+                    let magnitude = v.real(2)?;
+                    if !(magnitude.is_finite() && magnitude > 0.0) {
+                        return Err(v.malformed("the magnitude is not positive"));
+                    }
+                    return Ok(Box::new(crate::Line2 {
+                        origin,
+                        direction: dir * magnitude,
+                        range: whole,
+                    }));
+                }
+                "CIRCLE" => {
+                    let a = self.graph.get_as(
+                        &e,
+                        e.reference(1)?,
+                        "AXIS2_PLACEMENT_2D",
+                        "a circle's placement",
+                    )?;
+                    let center = self.point2(&a, a.reference(1)?)?;
+                    let x = match a.optional_reference(2)? {
+                        Some(d) => {
+                            let d = self.graph.get_as(&a, d, "DIRECTION", "a direction")?;
+                            match d.real_list(1)?.as_slice() {
+                                [x, y] => DVec2::new(*x, *y),
+                                _ => {
+                                    return Err(d.malformed("a 2D direction needs 2 components"));
+                                }
+                            }
+                        }
+                        None => DVec2::X,
+                    };
+                    let radius = e.real(2)?;
+                    if !(radius.is_finite() && radius > 0.0 && x.length() > 0.0) {
+                        return Err(e.malformed("a circle needs a positive radius and an axis"));
+                    }
+                    return Ok(Box::new(crate::Circle2 {
+                        center,
+                        radius,
+                        phase: x.y.atan2(x.x),
+                        sense: 1.0,
+                        range: whole,
+                    }));
+                }
+                "B_SPLINE_CURVE_WITH_KNOTS" => {
+                    let degree = degree_of(&e, 1)?;
+                    let points = self.points2(&e, 2)?;
+                    let knots = expand_knots(&e, 6, 7)?;
+                    let weights = vec![1.0; points.len()];
+                    return nurbs2(&e, degree, knots, points, weights);
+                }
+                "QUASI_UNIFORM_CURVE" | "UNIFORM_CURVE" | "BEZIER_CURVE" => {
+                    let degree = degree_of(&e, 1)?;
+                    let points = self.points2(&e, 2)?;
+                    let form = KnotForm::of(r.parts[0].0.as_str())
+                        .ok_or_else(|| e.unsupported("a p-curve"))?;
+                    let knots = form.knots(&e, degree, points.len())?;
+                    let weights = vec![1.0; points.len()];
+                    return nurbs2(&e, degree, knots, points, weights);
+                }
+                _ => return Err(e.unsupported("a p-curve")),
+            }
+        }
+        if let Some(b) = r.part("B_SPLINE_CURVE") {
+            let be = Entity { params: b, ..e };
+            let degree = degree_of(&be, 0)?;
+            let points = self.points2(&be, 1)?;
+            let knots = match r.part("B_SPLINE_CURVE_WITH_KNOTS") {
+                Some(k) => expand_knots(&Entity { params: k, ..e }, 0, 1)?,
+                None => {
+                    let form = ["QUASI_UNIFORM_CURVE", "UNIFORM_CURVE", "BEZIER_CURVE"]
+                        .into_iter()
+                        .find(|f| r.has(f))
+                        .and_then(KnotForm::of)
+                        .ok_or_else(|| e.unsupported("a p-curve"))?;
+                    form.knots(&e, degree, points.len())?
+                }
+            };
+            let weights = match r.part("RATIONAL_B_SPLINE_CURVE") {
+                Some(w) => Entity { params: w, ..e }.real_list(0)?,
+                None => vec![1.0; points.len()],
+            };
+            return nurbs2(&e, degree, knots, points, weights);
+        }
+        Err(e.unsupported("a p-curve"))
     }
 
     fn points(&self, e: &Entity<'_>, i: usize) -> Result<Vec<DVec3>, StepError> {
@@ -290,10 +463,10 @@ impl GeometryReader<'_, '_> {
             e = self.graph.get(&e, e.reference(1)?)?;
         }
         let spec = self.surface_spec(&e)?;
-        if let SurfaceSpec::Nurbs { .. } = spec {
-            spec.build([range(0.0, 1.0), range(0.0, 1.0)])
-                .map_err(|g| e.geometry(g))?;
-        }
+        // The constructors' checks (radii, knots, weights) at the surface's own entity, so an
+        // error names it rather than the face (the domain here is a placeholder).
+        spec.build([range(0.0, 1.0), range(0.0, 1.0)])
+            .map_err(|g| e.geometry(g))?;
         Ok(spec)
     }
 
@@ -339,6 +512,19 @@ impl GeometryReader<'_, '_> {
                     };
                     SurfaceSpec::Revolution(curve, point, axis)
                 }
+                "QUASI_UNIFORM_SURFACE" | "UNIFORM_SURFACE" | "BEZIER_SURFACE" => {
+                    let degree = [degree_of(&e, 1)?, degree_of(&e, 2)?];
+                    let points = self.net(&e, 3)?;
+                    let form = KnotForm::of(name).ok_or_else(|| e.unsupported("a face surface"))?;
+                    let knots = net_knots(&e, form, degree, &points)?;
+                    let weights = points.iter().map(|row| vec![1.0; row.len()]).collect();
+                    SurfaceSpec::Nurbs {
+                        degree,
+                        knots,
+                        points,
+                        weights,
+                    }
+                }
                 "B_SPLINE_SURFACE_WITH_KNOTS" => {
                     let degree = [degree_of(&e, 1)?, degree_of(&e, 2)?];
                     let points = self.net(&e, 3)?;
@@ -354,15 +540,24 @@ impl GeometryReader<'_, '_> {
                 _ => return Err(e.unsupported("a face surface")),
             });
         }
-        if let (Some(b), Some(k)) = (
-            r.part("B_SPLINE_SURFACE"),
-            r.part("B_SPLINE_SURFACE_WITH_KNOTS"),
-        ) {
+        if let Some(b) = r.part("B_SPLINE_SURFACE") {
             let be = Entity { params: b, ..e };
-            let ke = Entity { params: k, ..e };
             let degree = [degree_of(&be, 0)?, degree_of(&be, 1)?];
             let points = self.net(&be, 2)?;
-            let knots = [expand_knots(&ke, 0, 2)?, expand_knots(&ke, 1, 3)?];
+            let knots = match r.part("B_SPLINE_SURFACE_WITH_KNOTS") {
+                Some(k) => {
+                    let ke = Entity { params: k, ..e };
+                    [expand_knots(&ke, 0, 2)?, expand_knots(&ke, 1, 3)?]
+                }
+                None => {
+                    let form = ["QUASI_UNIFORM_SURFACE", "UNIFORM_SURFACE", "BEZIER_SURFACE"]
+                        .into_iter()
+                        .find(|f| r.has(f))
+                        .and_then(KnotForm::of)
+                        .ok_or_else(|| e.unsupported("a face surface"))?;
+                    net_knots(&e, form, degree, &points)?
+                }
+            };
             let weights = match r.part("RATIONAL_B_SPLINE_SURFACE") {
                 Some(w) => {
                     let we = Entity { params: w, ..e };
@@ -407,6 +602,96 @@ impl GeometryReader<'_, '_> {
             })
             .collect()
     }
+}
+
+/// A B-spline whose knots its type implies (ISO 10303-42, 4.3.4 and 4.3.5: the subtypes of
+/// B_SPLINE_CURVE and B_SPLINE_SURFACE that carry no knot list).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum KnotForm {
+    /// Knots −p, −p + 1, ..., n + 1, each once (n + 1 control points, degree p).
+    Uniform,
+    /// Knots 0, 1, ..., n − p, the end ones p + 1 times, the interior ones once.
+    QuasiUniform,
+    /// Piecewise Bezier: knots 0, 1, ..., n / p, the end ones p + 1 times, the interior
+    /// ones p times (n must be a multiple of p).
+    Bezier,
+}
+
+impl KnotForm {
+    fn of(name: &str) -> Option<Self> {
+        Some(match name {
+            "UNIFORM_CURVE" | "UNIFORM_SURFACE" => Self::Uniform,
+            "QUASI_UNIFORM_CURVE" | "QUASI_UNIFORM_SURFACE" => Self::QuasiUniform,
+            "BEZIER_CURVE" | "BEZIER_SURFACE" => Self::Bezier,
+            _ => return None,
+        })
+    }
+
+    /// The expanded knots of `count` control points of degree `degree` (n + p + 2 of them,
+    /// n + 1 = count).
+    fn knots(self, e: &Entity<'_>, degree: usize, count: usize) -> Result<Vec<f64>, StepError> {
+        if count <= degree {
+            return Err(e.malformed(format!(
+                "{count} control points for degree {degree} (at least {} needed)",
+                degree + 1
+            )));
+        }
+        let n = count - 1;
+        let p = degree;
+        Ok(match self {
+            Self::Uniform => (0..=n + p + 1).map(|k| k as f64 - p as f64).collect(),
+            Self::QuasiUniform => {
+                let mut out = vec![0.0; p + 1];
+                out.extend((1..n - p + 1).map(|k| k as f64));
+                out.extend(std::iter::repeat_n((n - p + 1) as f64, p + 1));
+                out
+            }
+            Self::Bezier => {
+                if n % p != 0 {
+                    return Err(e.malformed(format!(
+                        "{count} control points do not make Bezier segments of degree {degree}"
+                    )));
+                }
+                let segments = n / p;
+                let mut out = vec![0.0; p + 1];
+                for k in 1..segments {
+                    out.extend(std::iter::repeat_n(k as f64, p));
+                }
+                out.extend(std::iter::repeat_n(segments as f64, p + 1));
+                out
+            }
+        })
+    }
+}
+
+/// The implied knots (u, v) of a control net with rows along u.
+fn net_knots(
+    e: &Entity<'_>,
+    form: KnotForm,
+    degree: [usize; 2],
+    points: &[Vec<DVec3>],
+) -> Result<[Vec<f64>; 2], StepError> {
+    let columns = points.first().map_or(0, Vec::len);
+    if points.iter().any(|row| row.len() != columns) {
+        return Err(e.malformed("the control net's rows differ in length"));
+    }
+    Ok([
+        form.knots(e, degree[0], points.len())?,
+        form.knots(e, degree[1], columns)?,
+    ])
+}
+
+/// A B-spline p-curve, its data checked by the constructor at its entity.
+fn nurbs2(
+    e: &Entity<'_>,
+    degree: usize,
+    knots: Vec<f64>,
+    points: Vec<DVec2>,
+    weights: Vec<f64>,
+) -> Result<Box<dyn crate::Curve2>, StepError> {
+    let c = crate::curves::nurbs_curve2::NurbsCurve2::new(degree, knots, points, weights, false)
+        .map_err(|g| e.geometry(g))?;
+    Ok(Box::new(c))
 }
 
 /// A B-spline curve whose data the constructor accepts (knots, weights), with the
@@ -641,6 +926,23 @@ impl SurfaceSpec {
                 weights.clone(),
                 [false, false],
             )?),
+        })
+    }
+
+    /// The factors from the file's (u, v) of a point of this surface to the model's (before
+    /// a reversed face's v ↦ −v), given the file's millimetres per length unit and radians per
+    /// angle unit: lengths scale, angles convert, a B-spline's knots stay; the cone's v runs
+    /// along the ruling in the model and along the axis in STEP (v_model = v / cos a).
+    /// `None` where the reader does not map a file's p-curves (extrusions and revolutions:
+    /// their curve's own parameter), which are then projected.
+    pub(crate) fn pcurve_scale(&self, scale: f64, angle: f64) -> Option<DVec2> {
+        Some(match self {
+            Self::Plane(_) => DVec2::new(scale, scale),
+            Self::Cylinder(..) => DVec2::new(angle, scale),
+            Self::Cone(_, _, a) => DVec2::new(angle, scale / a.cos()),
+            Self::Sphere(..) | Self::Torus(..) => DVec2::new(angle, angle),
+            Self::Nurbs { .. } => DVec2::ONE,
+            Self::Extrusion(..) | Self::Revolution(..) => return None,
         })
     }
 

@@ -1,15 +1,18 @@
-//! P-curves computed by projecting an edge's 3D curve onto a face's surface: samples projected
-//! by Newton's method on the squared distance, periodic parameters unwrapped along the edge and
-//! next to the loop's previous entry, then the simplest p-curve that meets the tolerance: a
-//! line or a circle in (u, v) recognised from the samples, else a piecewise cubic Hermite
-//! B-spline through the projected points with their (u, v) tangents, refined until its
-//! midpoints are within the fit tolerance.
+//! P-curves of an edge on a face: samples of the edge's 3D curve projected onto the surface by
+//! Newton's method on the squared distance, periodic parameters unwrapped along the edge and
+//! next to the loop's previous entry; then the file's own PCURVE where one agrees with those
+//! samples within the fit tolerance (mapped to the model's parameters, [`MappedPCurve`]),
+//! else the simplest p-curve that meets the tolerance: a line or a circle in (u, v)
+//! recognised from the samples, else a piecewise cubic Hermite B-spline through the
+//! projected points with their (u, v) tangents, refined until its midpoints are within the
+//! fit tolerance.
 
 use crate::curves::curve::{Curve, ParamRange};
-use crate::curves::curve2::{Circle2, Curve2, Line2};
+use crate::curves::curve2::{Circle2, Curve2, Curve2Point};
 use crate::curves::nurbs_curve2::NurbsCurve2;
 use crate::surfaces::surface::Surface;
 use glam::{DVec2, DVec3};
+use std::sync::Arc;
 
 /// Newton steps of one projection.
 const NEWTON_STEPS: usize = 40;
@@ -131,6 +134,8 @@ pub(crate) struct FittedPCurve {
     pub gap: f64,
     /// Largest distance between S(c(t)) and the edge's projection at the check points (mm).
     pub fit_error: f64,
+    /// True when the curve is the file's own p-curve (placed, not fitted).
+    pub from_file: bool,
 }
 
 /// The inputs of one fit.
@@ -153,6 +158,172 @@ pub(crate) struct FitInput<'a> {
     /// Largest distance (mm) on the surface over which an end is snapped to its neighbour's;
     /// farther, the ends are left apart for the loop's closure check to report.
     pub snap_limit: f64,
+    /// The parameters in which the surface closes without being periodic (S(min, v) =
+    /// S(max, v): a closed B-spline surface, an extrusion of a closed B-spline curve).
+    pub closed: [bool; 2],
+    /// The file's own p-curves of this edge on this surface (PCURVE entities), mapped to the
+    /// model's (u, v) and the edge's parameter but not to a period ([`MappedPCurve`]).
+    pub file_pcurves: &'a [Arc<dyn Curve2>],
+    /// How far (mm, on the surface) a file p-curve may lie from the projection and be used:
+    /// the file's uncertainty.
+    pub agreement: f64,
+}
+
+/// A file's p-curve in the model's terms: c(t) = scale ⊙ c_file(rate · t), where `scale`
+/// turns the file's (u, v) units into the model's (lengths to mm, angles to radians, the
+/// cone's v from the axis to the ruling, a reversed face's v negated) and `rate` the model's
+/// edge parameter into the file's (±1 for the edge's sense, over radians per angle unit for
+/// a conic).
+#[derive(Debug)]
+pub(crate) struct MappedPCurve {
+    /// The file's curve.
+    pub inner: Box<dyn Curve2>,
+    /// Factors on (u, v).
+    pub scale: DVec2,
+    /// dt_file / dt.
+    pub rate: f64,
+}
+
+impl Curve2 for MappedPCurve {
+    fn eval(&self, t: f64) -> Curve2Point {
+        let c = self.inner.eval(self.rate * t);
+        Curve2Point {
+            point: self.scale * c.point,
+            d1: self.scale * c.d1 * self.rate,
+            d2: self.scale * c.d2 * (self.rate * self.rate),
+        }
+    }
+
+    fn domain(&self) -> ParamRange {
+        let d = self.inner.domain();
+        let (a, b) = (d.min / self.rate, d.max / self.rate);
+        ParamRange {
+            min: a.min(b),
+            max: a.max(b),
+            periodic: false,
+        }
+    }
+}
+
+/// A file p-curve placed where the projection put the edge: moved by whole periods, its ends
+/// blended onto the loop's (snapped) end points and equal to them bit for bit at t_min and
+/// t_max, like [`Segment2`].
+#[derive(Debug)]
+struct FromFile {
+    inner: Arc<dyn Curve2>,
+    shift: DVec2,
+    e0: DVec2,
+    e1: DVec2,
+    p0: DVec2,
+    p1: DVec2,
+    range: ParamRange,
+}
+
+impl Curve2 for FromFile {
+    fn eval(&self, t: f64) -> Curve2Point {
+        let c = self.inner.eval(t);
+        let span = self.range.span();
+        let s = (t - self.range.min) / span;
+        let point = if t == self.range.min {
+            self.p0
+        } else if t == self.range.max {
+            self.p1
+        } else {
+            c.point + self.shift + (1.0 - s) * self.e0 + s * self.e1
+        };
+        Curve2Point {
+            point,
+            d1: c.d1 + (self.e1 - self.e0) / span,
+            d2: c.d2,
+        }
+    }
+
+    fn domain(&self) -> ParamRange {
+        self.range
+    }
+}
+
+/// A surface closed but not periodic in some parameter, seen as periodic there: projections
+/// move freely across its seam and unwrap continuously along an edge, as on a cylinder; the
+/// fit then places the whole entry in the domain ([`place_in_closed_domain`]).
+struct ClosedAsPeriodic<'a> {
+    inner: &'a dyn Surface,
+    domain: [ParamRange; 2],
+}
+
+impl std::fmt::Debug for ClosedAsPeriodic<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ClosedAsPeriodic")
+            .field("domain", &self.domain)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Surface for ClosedAsPeriodic<'_> {
+    fn eval(&self, u: f64, v: f64) -> crate::surfaces::surface::SurfacePoint {
+        self.inner
+            .eval(self.domain[0].normalize(u), self.domain[1].normalize(v))
+    }
+
+    fn domain(&self) -> [ParamRange; 2] {
+        self.domain
+    }
+}
+
+/// Moves an entry's samples by whole spans in the closed (non-periodic) parameters so that
+/// they lie in `domain` (within `slack`). An entry on the seam itself (every sample on one
+/// boundary) could lie on either side: it goes on the side that puts the face on its left,
+/// as a face's loops run (outer loop counter-clockwise, holes clockwise): running up in v at
+/// u = max, down at u = min; in u at v = min running right, at v = max running left.
+fn place_in_closed_domain(
+    uvs: &mut [DVec2],
+    domain: [ParamRange; 2],
+    closed: [bool; 2],
+    reversed: bool,
+) {
+    let n = uvs.len();
+    let (first, last) = if reversed { (n - 1, 0) } else { (0, n - 1) };
+    let run = uvs[last] - uvs[first];
+    for i in 0..2 {
+        if !closed[i] {
+            continue;
+        }
+        let (min, span) = (domain[i].min, domain[i].span());
+        let slack = 1e-9 * span;
+        // Bring the first sample into [min, max), then try that shift and its neighbours.
+        let base = -span * ((uvs[first][i] - min) / span).floor();
+        let (lo, hi) = uvs
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), q| {
+                (lo.min(q[i]), hi.max(q[i]))
+            });
+        let fits = |shift: f64| lo + shift >= min - slack && hi + shift <= min + span + slack;
+        let candidates: Vec<f64> = [base - span, base, base + span]
+            .into_iter()
+            .filter(|&s| fits(s))
+            .collect();
+        let shift = match candidates.as_slice() {
+            [] => continue,
+            [one] => *one,
+            // On the seam: the face's side decides (the other parameter's run along the
+            // entry gives the direction).
+            several => {
+                let at_max = if i == 0 { run.y > 0.0 } else { run.x < 0.0 };
+                let target = if at_max { min + span } else { min };
+                *several
+                    .iter()
+                    .min_by(|a, b| {
+                        ((lo + *a) - target)
+                            .abs()
+                            .total_cmp(&((lo + *b) - target).abs())
+                    })
+                    .unwrap_or(&base)
+            }
+        };
+        for q in uvs.iter_mut() {
+            q[i] += shift;
+        }
+    }
 }
 
 /// Shift by whole periods that brings `x` nearest `near` (0 for a non-periodic parameter).
@@ -172,7 +343,15 @@ fn wrap_near(x: DVec2, near: DVec2, periods: [f64; 2]) -> DVec2 {
 /// A description when no fit within the tolerance exists with [`MAX_SEGMENTS`] segments, or
 /// a projection is not finite.
 pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
-    let surface = input.surface;
+    let true_domain = input.surface.domain();
+    let seen_periodic = ClosedAsPeriodic {
+        inner: input.surface,
+        domain: [0, 1].map(|i| ParamRange {
+            periodic: true_domain[i].periodic || input.closed[i],
+            ..true_domain[i]
+        }),
+    };
+    let surface: &dyn Surface = &seen_periodic;
     let domain = surface.domain();
     let periods = [0, 1].map(|i| {
         if domain[i].periodic {
@@ -238,6 +417,7 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
         for uv in &mut uvs {
             *uv += shift;
         }
+        place_in_closed_domain(&mut uvs, true_domain, input.closed, input.reversed);
         // Consecutive entries meet exactly in (u, v): the entry point is the previous end, the
         // exit point the given one (both within the healed gap of the projections).
         let (first, last) = if input.reversed {
@@ -250,7 +430,16 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                 .eval(domain[0].normalize(uv.x), domain[1].normalize(uv.y))
                 .point
         };
-        let near = |a: DVec2, b: DVec2| on(a).distance(on(b)) <= input.snap_limit;
+        // Near on the surface, and on the same side of a closed surface's seam (where
+        // points a span apart in (u, v) are one point in space).
+        let same_side = |a: DVec2, b: DVec2| {
+            (0..2).all(|i| {
+                !(input.closed[i] && !true_domain[i].periodic)
+                    || (a[i] - b[i]).abs() < 0.5 * true_domain[i].span()
+            })
+        };
+        let near =
+            |a: DVec2, b: DVec2| same_side(a, b) && on(a).distance(on(b)) <= input.snap_limit;
         if let Some(prev) = input.previous_end.filter(|&p| near(p, uvs[first])) {
             uvs[first] = prev;
         }
@@ -284,12 +473,41 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
             }
             worst
         };
-        // A line in (u, v).
         let (t0, t1) = (ts[0], ts[count - 1]);
-        let direction = (uvs[count - 1] - uvs[0]) / (t1 - t0);
-        let line = Line2 {
-            origin: uvs[0] - t0 * direction,
-            direction,
+        // The file's own p-curve, where it agrees with the projection within the file's
+        // uncertainty at every sample: exact where the fits below approximate. Where none
+        // agrees (another convention, a p-curve on a neighbouring surface, a careless
+        // exporter) the projection is the truth: the 3D curve defines the edge.
+        for candidate in input.file_pcurves {
+            let c0 = candidate.eval(t0).point;
+            let c1 = candidate.eval(t1).point;
+            if !(c0.is_finite() && c1.is_finite()) {
+                continue;
+            }
+            let shift = wrap_near(c0, uvs[0], periods) - c0;
+            let placed = FromFile {
+                inner: Arc::clone(candidate),
+                shift,
+                e0: uvs[0] - (c0 + shift),
+                e1: uvs[count - 1] - (c1 + shift),
+                p0: uvs[0],
+                p1: uvs[count - 1],
+                range: edge_range,
+            };
+            let e = error_of(&placed);
+            if e <= input.agreement {
+                return Ok(FittedPCurve {
+                    curve: Box::new(placed),
+                    gap,
+                    fit_error: e,
+                    from_file: true,
+                });
+            }
+        }
+        // A line in (u, v).
+        let line = Segment2 {
+            start: uvs[0],
+            end: uvs[count - 1],
             range: edge_range,
         };
         let e = error_of(&line);
@@ -298,6 +516,7 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                 curve: Box::new(line),
                 gap,
                 fit_error: e,
+                from_file: false,
             });
         }
         // A circle in (u, v) with its angle affine in t at unit rate.
@@ -309,6 +528,8 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                 inner: circle,
                 e0: uvs[0] - at0,
                 e1: uvs[count - 1] - at1,
+                p0: uvs[0],
+                p1: uvs[count - 1],
                 range: edge_range,
             };
             let e = error_of(&circle);
@@ -317,6 +538,7 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                     curve: Box::new(circle),
                     gap,
                     fit_error: e,
+                    from_file: false,
                 });
             }
         }
@@ -328,6 +550,7 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
                 curve: Box::new(hermite),
                 gap,
                 fit_error: e,
+                from_file: false,
             });
         }
         if segments >= MAX_SEGMENTS {
@@ -395,6 +618,34 @@ fn hermite(ts: &[f64], uvs: &[DVec2], rates: &[DVec2]) -> Result<NurbsCurve2, St
     NurbsCurve2::new(3, knots, points, weights, false).map_err(|e| e.to_string())
 }
 
+/// The straight p-curve from `start` at t_min to `end` at t_max, c(t) = (1 − s) start + s end
+/// with s = (t − t_min) / span: unlike origin + t · direction it gives both end points bit for
+/// bit, so consecutive entries of a loop that were snapped together meet exactly (a gap of one
+/// rounding unit can put a loop's closing point on its first segment, which the validation
+/// rightly counts as a crossing; SolidWorks' `box_sides.STEP` did).
+#[derive(Debug)]
+struct Segment2 {
+    start: DVec2,
+    end: DVec2,
+    range: ParamRange,
+}
+
+impl Curve2 for Segment2 {
+    fn eval(&self, t: f64) -> crate::curves::curve2::Curve2Point {
+        let span = self.range.span();
+        let s = (t - self.range.min) / span;
+        crate::curves::curve2::Curve2Point {
+            point: (1.0 - s) * self.start + s * self.end,
+            d1: (self.end - self.start) / span,
+            d2: DVec2::ZERO,
+        }
+    }
+
+    fn domain(&self) -> ParamRange {
+        self.range
+    }
+}
+
 /// A p-curve moved by a linear blend of two small corrections so that it passes exactly
 /// through given end points: c(t) = inner(t) + (1 − s) e0 + s e1, s = (t − t_min) / span.
 #[derive(Debug)]
@@ -402,6 +653,9 @@ struct EndCorrected<C: Curve2> {
     inner: C,
     e0: DVec2,
     e1: DVec2,
+    /// The end points the curve passes through at t_min and t_max.
+    p0: DVec2,
+    p1: DVec2,
     range: ParamRange,
 }
 
@@ -410,8 +664,16 @@ impl<C: Curve2> Curve2 for EndCorrected<C> {
         let c = self.inner.eval(t);
         let span = self.range.span();
         let s = (t - self.range.min) / span;
+        // At the ends, the end points bit for bit (see `Segment2`).
+        let point = if t == self.range.min {
+            self.p0
+        } else if t == self.range.max {
+            self.p1
+        } else {
+            c.point + (1.0 - s) * self.e0 + s * self.e1
+        };
         crate::curves::curve2::Curve2Point {
-            point: c.point + (1.0 - s) * self.e0 + s * self.e1,
+            point,
             d1: c.d1 + (self.e1 - self.e0) / span,
             d2: c.d2,
         }

@@ -96,9 +96,18 @@ pub(crate) fn units_of(graph: &Graph<'_>, context: u64) -> Result<Units, StepErr
         let e = Entity { params, ..ctx };
         for id in e.ref_list(0)? {
             let m = graph.get(&e, id)?;
-            let Some(params) = m.record.part("UNCERTAINTY_MEASURE_WITH_UNIT") else {
+            if !m.record.has("UNCERTAINTY_MEASURE_WITH_UNIT") {
                 continue;
-            };
+            }
+            // The simple form holds (value, unit, name, description); the complex one
+            // (LENGTH_MEASURE_WITH_UNIT() MEASURE_WITH_UNIT(value, unit)
+            // UNCERTAINTY_MEASURE_WITH_UNIT(name, description)), as CATIA, Pro/E and
+            // other exporters write it, holds the value and unit in MEASURE_WITH_UNIT.
+            let params = m
+                .record
+                .part("MEASURE_WITH_UNIT")
+                .or_else(|| m.record.part("UNCERTAINTY_MEASURE_WITH_UNIT"))
+                .unwrap_or(m.params);
             let m = Entity { params, ..m };
             let value = m.real(0)?;
             let unit = graph.get(&m, m.reference(1)?)?;
