@@ -129,6 +129,16 @@ pub(crate) fn side_params(domain: &[ParamRange; 2], side: ParamSide, t: f64) -> 
 }
 
 impl Body<'_> {
+    /// How far apart (mm) one point may evaluate on two adjacent features of this body: the
+    /// solid's model tolerance (an edge lies within it of its faces, a vertex of its edges'
+    /// ends); 0 for a fixed point.
+    pub fn feature_gap(&self) -> f64 {
+        match self {
+            Self::Solid { solid, .. } => solid.model_tolerance(),
+            Self::Point(_) => 0.0,
+        }
+    }
+
     /// Parameter domains of the feature at `loc` (unused entries are a dummy range).
     pub fn domains(&self, loc: &Loc) -> [ParamRange; 2] {
         let dummy = ParamRange {

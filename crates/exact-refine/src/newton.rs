@@ -923,11 +923,19 @@ fn minimize_known(
         };
         let trial = State::new(a, b, ta, tb, base_scale);
         let (m_cur, m_trial) = (cur.merit(), trial.merit());
-        let slack = 8.0 * EPS * cur.scale * ((2.0 * m_cur).sqrt() + EPS * cur.scale);
+        let switched_a = trial.la.map(|l| l.feature()) != cur.la.map(|l| l.feature());
+        let switched_b = trial.lb.map(|l| l.feature()) != cur.lb.map(|l| l.feature());
+        // A step onto another feature (a face's edge, an edge's vertex) evaluates the same
+        // point on geometry that agrees only to the model tolerance, so f = ½|d|² may rise by
+        // up to |d| x (the two gaps) with no move at all: a STEP cone's rim lies 9e-13 mm
+        // above its edge, and a seed on that rim, whose minimum is along the edge, stalled
+        // with every step onto the edge rejected.
+        let jump = f64::from(u8::from(switched_a)) * a.feature_gap()
+            + f64::from(u8::from(switched_b)) * b.feature_gap();
+        let slack = 8.0 * EPS * cur.scale * ((2.0 * m_cur).sqrt() + EPS * cur.scale)
+            + (2.0 * m_cur).sqrt() * jump;
         if m_trial.is_finite() && m_trial <= m_cur + slack {
-            if trial.la.map(|l| l.feature()) != cur.la.map(|l| l.feature())
-                || trial.lb.map(|l| l.feature()) != cur.lb.map(|l| l.feature())
-            {
+            if switched_a || switched_b {
                 switches += 1;
                 if switches > options.max_feature_switches {
                     return end(trial, iteration + 1, Outcome::SwitchLimit);
