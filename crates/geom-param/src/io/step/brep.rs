@@ -939,14 +939,6 @@ impl<'g, 'a> Builder<'g, 'a> {
             vertices,
             tolerance,
         };
-        if std::env::var("STEP_NO_VALIDATE").is_ok() {
-            return Ok(StepSolid {
-                name,
-                id: self.solid_id,
-                solid,
-                pcurves: self.pcurves,
-            });
-        }
         validate(&solid).map_err(|source| StepError::Topology {
             id: self.solid_id,
             name: name.clone(),
