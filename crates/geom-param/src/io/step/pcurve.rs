@@ -434,7 +434,8 @@ pub(crate) fn fit(input: &FitInput<'_>) -> Result<FittedPCurve, String> {
         // points a span apart in (u, v) are one point in space).
         let same_side = |a: DVec2, b: DVec2| {
             (0..2).all(|i| {
-                !(input.closed[i] && !true_domain[i].periodic)
+                !input.closed[i]
+                    || true_domain[i].periodic
                     || (a[i] - b[i]).abs() < 0.5 * true_domain[i].span()
             })
         };
