@@ -401,6 +401,12 @@ pub(crate) fn solve(
             ..again
         };
     }
+    if matches!(first.outcome, Outcome::Stalled | Outcome::SwitchLimit) {
+        if let Some(mut fast) = stalled_edge_witness(a, b, &first.state, base_scale, options) {
+            fast.iterations += first.iterations;
+            return fast;
+        }
+    }
     if first.outcome == Outcome::Penetrating {
         let (la, lb) = (first.state.la, first.state.lb);
         if let Some(mut fast) = saddle_newton(a, b, &first.state, base_scale, options)
@@ -418,7 +424,12 @@ pub(crate) fn solve(
     // opposed) without ever seeing a penetrating pair: restart once inside the lens.
     match crossing_restart(a, b, &first.state) {
         Some((ra, rb)) if first.outcome == Outcome::Converged => {
+            // An edge already crossing a face is the ridge witness's own start (a bracket's
+            // edge 1e-3 mm into a vase, where the restart moved onto the edge's other face and
+            // the nested solver wandered 13.5 mm along it).
+            let (la, lb) = (first.state.la, first.state.lb);
             let fast = nearest_edges_witness(a, b, &first.state, base_scale, options)
+                .or_else(|| edge_face_witness(a, b, la, lb, base_scale, options))
                 .or_else(|| ridge_witness(a, b, &first.state, (ra, rb), base_scale, options));
             if let Some(mut fast) = fast {
                 fast.iterations += first.iterations;
@@ -458,6 +469,39 @@ fn nearest_edges_witness(
         return None;
     }
     edge_pair_witness(a, b, ea, eb, base_scale, options)
+}
+
+/// The penetration witness of an edge, where minimising f stalled on two faces (`state`):
+/// between the two faces' nearest boundary edges ([`nearest_edges_witness`]), or between
+/// either face's nearest boundary edge and the other face ([`edge_face_witness`]). Only a
+/// validated witness is taken; `None` otherwise (also when `state` is not on two faces).
+///
+/// Why: a rim 1e-3 mm into a face, with the seed on the rim's cap 4e-3 mm in from the rim (a
+/// loft's bottom cap on a paperweight's dome), minimises f on the cap and the dome towards
+/// their crossing, which runs out of the cap's trim beside the rim: the solve stalls at
+/// |d| = 1.8e-4 mm (57 iterations) without seeing a penetrating pair, and the pair was
+/// reported separated. The witness is the rim against the dome.
+fn stalled_edge_witness(
+    a: &Body,
+    b: &Body,
+    state: &State,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Option<Solution> {
+    let on_face = |l: &Loc| matches!(l, Some(FeatureLocation::Face { .. }));
+    if !(on_face(&state.la) && on_face(&state.lb)) {
+        return None;
+    }
+    if let Some(both) = nearest_edges_witness(a, b, state, base_scale, options) {
+        return Some(both);
+    }
+    [
+        (onto_nearest_edge(a, state.la), state.lb),
+        (state.la, onto_nearest_edge(b, state.lb)),
+    ]
+    .into_iter()
+    .filter(|&starts| starts != (state.la, state.lb))
+    .find_map(|(sa, sb)| edge_face_witness(a, b, sa, sb, base_scale, options))
 }
 
 /// The witness of a ridge cutting the other side's face ([`edge_face_witness`]), from a
