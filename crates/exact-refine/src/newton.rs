@@ -418,7 +418,8 @@ pub(crate) fn solve(
         }
         let mut deep = solve_penetration(a, b, first.state.la, first.state.lb, base_scale, options);
         deep.iterations += first.iterations;
-        return retry_on_sides(a, b, deep, base_scale, options);
+        let deep = retry_on_sides(a, b, deep, base_scale, options);
+        return separated_end(a, b, deep, base_scale, options);
     }
     // Minimising f can end on the intersection curve of two faces (f = 0 with the normals not
     // opposed) without ever seeing a penetrating pair: restart once inside the lens.
@@ -440,6 +441,43 @@ pub(crate) fn solve(
             retry_on_sides(a, b, deep, base_scale, options)
         }
         _ => first,
+    }
+}
+
+/// A penetration solve that did not converge, polished as a distance minimisation from its
+/// end when that converges to a pair that is not penetrating (the minimisation's own test):
+/// the pair was never penetrating, only its start looked so. `deep` otherwise.
+///
+/// Why: Stage 2 hands the seed of two convex components whose hulls overlap (a tube's hull
+/// fills its hole) as a penetrating pair 20 mm apart; the first minimisation stops there as
+/// penetrating, and the nested solver crept towards the true minimum (a tube's rim against a
+/// bracket's fillet edge, 0.0218 mm) and stopped at its iteration limit 1e-4 mm short.
+fn separated_end(
+    a: &Body,
+    b: &Body,
+    deep: Solution,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Solution {
+    if deep.outcome == Outcome::Converged {
+        return deep;
+    }
+    let polished = minimize(
+        a,
+        b,
+        deep.state.la,
+        deep.state.lb,
+        base_scale,
+        options,
+        Reentry::Allowed,
+    );
+    if polished.outcome == Outcome::Converged {
+        Solution {
+            iterations: deep.iterations + polished.iterations,
+            ..polished
+        }
+    } else {
+        deep
     }
 }
 
