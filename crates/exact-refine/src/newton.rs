@@ -1229,6 +1229,19 @@ pub(crate) fn take_step(a: &Body, b: &Body, cur: &State, step: &[f64; 4]) -> (Lo
         slot[i] = if i < cur.na { i } else { 2 + i - cur.na };
         delta[slot[i]] = step[i] / cur.speed[i];
     }
+    // A coordinate on its bound that the step pushes outward is held there, so that the other
+    // components still move: a start on a corner of a face's rectangle (re-entry from the
+    // vertex there) slides along the side it can follow instead of stopping, and settling
+    // onto the vertex again. (A rounded box's corner against a jar cycled vertex -> face ->
+    // edge end -> vertex to the switch limit.)
+    for &s in &slot[..cur.n] {
+        let range = ranges[s];
+        let outward =
+            (x[s] <= range.min && delta[s] < 0.0) || (x[s] >= range.max && delta[s] > 0.0);
+        if !range.periodic && outward {
+            delta[s] = 0.0;
+        }
+    }
     let mut alpha = 1.0_f64;
     let mut hit = None;
     for &s in &slot[..cur.n] {
