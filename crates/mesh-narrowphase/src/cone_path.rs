@@ -56,9 +56,11 @@ struct Found {
     /// their third-order error, which the factor of four between this radius and
     /// [`MODEL_MERGE`]'s covers).
     outside: Option<f64>,
-    /// A leaf pair's candidate: superseded by a lower one of a neighbouring leaf pair
-    /// ([`superseded`]).
-    leaf: bool,
+    /// For a leaf pair's candidate, the error bound (mm) of its mesh distance as the distance
+    /// of the exact surfaces there: the sum of the two pieces' deviation bounds. Such a
+    /// candidate is superseded by a certainly lower one of a neighbouring leaf pair
+    /// ([`superseded`]); `None` for other candidates.
+    leaf: Option<f64>,
     source: Source,
 }
 
@@ -265,18 +267,28 @@ pub(crate) fn cone_path(
 /// Whether the leaf pair's candidate `f` is not a local minimum of the distance between leaf
 /// pairs: an earlier candidate of `earlier` (sorted by distance) from a neighbouring leaf pair
 /// (points within the sum of the two candidates' radii on both sides, so that the pairs' balls
-/// meet on both sides) is strictly closer. Along a valley of the distance every candidate but
-/// the lowest has such a neighbour, so the valley gets one seed; two minima keep a seed each, as
-/// the distance rises between them (up to the leaves' resolution, as for [`Found::radius`]).
+/// meet on both sides) is closer by more than the two mesh distances' error bounds, so that the
+/// exact surfaces are certainly closer there too. Along a valley of the distance that falls
+/// faster than the meshes' error, every candidate but the lowest has such a neighbour, so the
+/// valley gets one seed; two minima keep a seed each, as the distance rises between them (up
+/// to the leaves' resolution, as for [`Found::radius`]).
+///
+/// Why the error bounds: two minima of the exact distance in neighbouring leaf pairs whose
+/// mesh distances are ordered the other way round (a paperweight's rim 1e-3 mm into a goblet's
+/// lip beside a second minimum at 3.3e-2 mm, with the lip's mesh 5e-2 mm off) lost the deeper
+/// one when any lower neighbour superseded.
 fn superseded(earlier: &[Found], f: &Found) -> bool {
-    f.leaf
-        && earlier.iter().any(|g| {
-            let r = f.radius + g.radius;
-            g.leaf
-                && g.rank.1 < f.rank.1
+    let Some(f_error) = f.leaf else {
+        return false;
+    };
+    earlier.iter().any(|g| {
+        let r = f.radius + g.radius;
+        g.leaf.is_some_and(|g_error| {
+            g.rank.1 + g_error < f.rank.1 - f_error
                 && g.point_a.distance(f.point_a) <= r
                 && g.point_b.distance(f.point_b) <= r
         })
+    })
 }
 
 /// The mesh triangles of a leaf pair.
@@ -370,7 +382,7 @@ fn predict(na: &PatchNode, nb: &PatchNode, frame: &PairFrame) -> Option<Found> {
         point_b: lift(&hb),
         radius: MODEL_MERGE * na.radius.min(nb.radius),
         outside: clamped.then_some(na.radius.min(nb.radius)),
-        leaf: false,
+        leaf: None,
         source: Source::Certified,
     })
 }
@@ -522,16 +534,16 @@ fn leaf_seed(
         a: piece_point(side_a, pa, pair.a.barycentric)?,
         b: piece_point(side_b, pb, pair.b.barycentric)?,
     };
-    let radius = tree_a.nodes[a as usize]
-        .radius
-        .max(tree_b.nodes[b as usize].radius);
+    let (node_a, node_b) = (&tree_a.nodes[a as usize], &tree_b.nodes[b as usize]);
+    let radius = node_a.radius.max(node_b.radius);
     pair.distance.is_finite().then_some(Found {
         rank: (1, pair.distance),
         point_a: pair.a.point,
         point_b: pair.b.point,
         radius,
         outside: None,
-        leaf: true,
+        // A leaf's inset is its one piece's deviation bound.
+        leaf: Some(node_a.mesh_inset + node_b.mesh_inset),
         source: Source::Made(seed),
     })
 }
@@ -586,7 +598,7 @@ fn apex_seed(
         point_b,
         radius: tree.nodes[node as usize].radius,
         outside: None,
-        leaf: false,
+        leaf: None,
         source: Source::Made(seed),
     })
 }
@@ -609,7 +621,7 @@ fn apex_pair(
         point_b: pb,
         radius: 0.0,
         outside: None,
-        leaf: false,
+        leaf: None,
         source: Source::Made(Seed {
             a: SeedPoint {
                 component: side_a.component,
