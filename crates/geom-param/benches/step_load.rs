@@ -7,7 +7,7 @@ use geom_param::step::read_step;
 use geom_param::{MeshOptions, ObjectModel};
 use std::time::Duration;
 
-const FILES: [&str; 11] = [
+const FILES: [&str; 12] = [
     "red_cube_blue_cylinder.step",
     "solidworks_base_interface.step",
     "solidworks_featuretype.step",
@@ -19,6 +19,7 @@ const FILES: [&str; 11] = [
     "inventor_io1.stp",
     "autocad_io1.stp",
     "onshape_cube_hole.step",
+    "cascade_io1.stp",
 ];
 
 fn bench(c: &mut Criterion) {
