@@ -217,3 +217,36 @@ pub fn closest_between_triangles(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> TrianglePa
     }
     best
 }
+
+/// A lower bound (mm) on the distance between two triangles by separating axes: the largest
+/// gap between their projections onto the two triangles' normals and the nine cross products
+/// of an edge of each (unit axes; a projection onto a unit vector does not increase
+/// distances). Two triangles are disjoint exactly when one of these axes separates them
+/// (the separating axis theorem for convex polytopes), so the bound is positive exactly for
+/// disjoint triangles, up to rounding; 0 or less otherwise (and for degenerate triangles
+/// whose axes all vanish).
+#[must_use]
+pub fn separating_gap(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> f64 {
+    let edges = |t: &[DVec3; 3]| [t[1] - t[0], t[2] - t[1], t[0] - t[2]];
+    let (e1, e2) = (edges(t1), edges(t2));
+    let mut best = f64::NEG_INFINITY;
+    let mut along = |axis: DVec3| {
+        let Some(u) = axis.try_normalize() else {
+            return;
+        };
+        let project = |t: &[DVec3; 3]| {
+            let [p, q, r] = t.map(|x| u.dot(x));
+            (p.min(q).min(r), p.max(q).max(r))
+        };
+        let ((lo1, hi1), (lo2, hi2)) = (project(t1), project(t2));
+        best = best.max((lo2 - hi1).max(lo1 - hi2));
+    };
+    along(e1[0].cross(e1[1]));
+    along(e2[0].cross(e2[1]));
+    for a in e1 {
+        for b in e2 {
+            along(a.cross(b));
+        }
+    }
+    best
+}
