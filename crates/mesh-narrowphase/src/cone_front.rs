@@ -70,13 +70,14 @@ impl ConeFront {
             (true, Some(reference)) => motion(&reference, pose_ab, tree_b),
             _ => f64::INFINITY,
         };
-        // Entries the motion has used up (those tested every query, with negative margins, do
-        // not count: a traversal from the root would stop at them again).
+        // Entries the motion has used up (those tested every query, with negative margins, and
+        // pairs dropped by their cones do not count: a traversal from the root would stop at
+        // them again).
         let (mut used_up, mut carried) = (0_usize, 0_usize);
         for e in &self.entries {
             if e.slack > moved {
                 carried += 1;
-            } else if e.slack >= 0.0 {
+            } else if e.slack >= 0.0 && !e.by_cones {
                 used_up += 1;
             }
         }

@@ -50,6 +50,10 @@ pub struct FrontEntry {
     /// ([`CONE_CARRY`]) less that motion. Negative for every other stop (certified, a leaf,
     /// a cone drop too close to the limit), which the next query tests again.
     pub slack: f64,
+    /// Dropped by its cones: when the motion uses its slack up, the pair is tested again like
+    /// every pair with a negative slack (it does not count towards rebuilding the front, see
+    /// [`crate::cone_front`]).
+    pub by_cones: bool,
 }
 
 /// What a traversal found. Reuse one across queries.
@@ -310,9 +314,11 @@ impl CarriedDrop<'_> {
     /// turn by α as 2 sin(α/2) R), and `gap` (by how much the meshes' volumes, shrunk by their
     /// insets, are apart; distances between sets shrink by at most the motion) exceeds m;
     /// -1 (test again) otherwise.
-    fn slack(&self, gap: f64) -> f64 {
+    /// `moved` is the motion (mm) of B since the front's reference pose, which the margin
+    /// must exceed to be of use.
+    fn slack(&self, gap: f64, moved: f64) -> f64 {
         let margin = CONE_CARRY * self.a.radius.min(self.b.radius);
-        if !(gap > margin && margin > 0.0 && self.b_reach > 0.0) {
+        if !(gap > margin && margin > moved && self.b_reach > 0.0) {
             return -1.0;
         }
         let turn = 2.0 * (margin / (2.0 * self.b_reach)).min(1.0).asin();
@@ -367,7 +373,12 @@ pub fn traverse(
             continue;
         };
         out.visited = out.visited.saturating_add(1);
-        let stopped = |slack: f64| FrontEntry { a: i, b: j, slack };
+        let stopped = |slack: f64| FrontEntry {
+            a: i,
+            b: j,
+            slack,
+            by_cones: false,
+        };
         let cb = frame.rotation * b.centre + frame.translation;
         let d = cb - a.centre;
         let radii = a.radius + b.radius;
@@ -404,7 +415,10 @@ pub fn traverse(
                 length,
                 b_reach,
             };
-            stopped(carry.slack(gap) - moved)
+            FrontEntry {
+                by_cones: true,
+                ..stopped(carry.slack(gap, moved) - moved)
+            }
         };
         // Disjoint balls and no critical pair: nothing to find here.
         if !critical && length + inset > radii {
