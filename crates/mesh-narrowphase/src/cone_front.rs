@@ -93,15 +93,14 @@ impl ConeFront {
             out.queue(0, 0);
             return 0.0;
         }
-        // (A NaN margin is tested again.)
-        for e in self
-            .entries
-            .iter()
-            .filter(|e| e.slack <= moved || e.slack.is_nan())
-        {
-            out.queue(e.a, e.b);
-        }
-        self.entries.retain(|e| e.slack > moved);
+        // One pass: queue the pairs to test again (a NaN margin too), keep the rest.
+        self.entries.retain(|e| {
+            let keep = e.slack > moved;
+            if !keep {
+                out.queue(e.a, e.b);
+            }
+            keep
+        });
         moved
     }
 
