@@ -285,6 +285,18 @@ fn leaf_triangles_gap(
     Some(separating_gap(&ta, &tb) - 1e-9 * magnitude)
 }
 
+/// The deviation bound (mm) of a leaf's piece from its exact surface (infinite for a node
+/// without a piece).
+fn piece_deviation(tree: &PatchTree, node: &PatchNode) -> f64 {
+    match node.leaf {
+        PatchLeaf::Piece(k) => tree
+            .pieces
+            .get(k as usize)
+            .map_or(f64::INFINITY, |p| p.deviation),
+        PatchLeaf::Inner => f64::INFINITY,
+    }
+}
+
 /// Fraction of the smaller ball radius of a node pair dropped by its cones by which B may move
 /// (every point of B's component) before the pair is tested again ([`CarriedDrop`]).
 pub const CONE_CARRY: f64 = 0.01;
@@ -452,14 +464,25 @@ pub fn traverse(
         }
         match (a.is_leaf(), b.is_leaf()) {
             (true, true) => {
-                // Without a critical pair the leaves matter only if their triangles intersect:
-                // triangles apart by a separating axis are dropped here.
-                let gap = if critical {
+                // The triangles' separating gap: without a critical pair the leaves matter only
+                // if their triangles intersect, so that triangles apart are dropped; with one,
+                // the pair is dropped when the gap less the pieces' deviations from their exact
+                // patches exceeds the reach (measured only where the volumes are apart:
+                // overlapping volumes are close, their triangles rarely beyond the reach).
+                let gap = if critical && lower <= 0.0 {
                     None
                 } else {
                     leaf_triangles_gap((tree_a, a), (tree_b, b), frame)
                 };
-                if let Some(gap) = gap.filter(|&g| g > 0.0) {
+                if critical {
+                    // The exact patches lie within their pieces' deviations of the triangles.
+                    let deviations = piece_deviation(tree_a, a) + piece_deviation(tree_b, b);
+                    let lower = gap.map_or(f64::NEG_INFINITY, |g| g - deviations);
+                    if lower > reach {
+                        out.front.push(stopped(lower - reach - moved));
+                        continue;
+                    }
+                } else if let Some(gap) = gap.filter(|&g| g > 0.0) {
                     out.front.push(dropped_by_cones(gap));
                     continue;
                 }
