@@ -70,13 +70,14 @@ impl ConeFront {
             (true, Some(reference)) => motion(&reference, pose_ab, tree_b),
             _ => f64::INFINITY,
         };
-        // Entries the motion has used up (those tested every query, with negative margins, do
-        // not count: a traversal from the root would stop at them again).
+        // Entries the motion has used up (those tested every query, with negative margins, and
+        // pairs dropped by their cones do not count: a traversal from the root would stop at
+        // them again).
         let (mut used_up, mut carried) = (0_usize, 0_usize);
         for e in &self.entries {
             if e.slack > moved {
                 carried += 1;
-            } else if e.slack >= 0.0 {
+            } else if e.slack >= 0.0 && !e.by_cones {
                 used_up += 1;
             }
         }
@@ -92,15 +93,14 @@ impl ConeFront {
             out.queue(0, 0);
             return 0.0;
         }
-        // (A NaN margin is tested again.)
-        for e in self
-            .entries
-            .iter()
-            .filter(|e| e.slack <= moved || e.slack.is_nan())
-        {
-            out.queue(e.a, e.b);
-        }
-        self.entries.retain(|e| e.slack > moved);
+        // One pass: queue the pairs to test again (a NaN margin too), keep the rest.
+        self.entries.retain(|e| {
+            let keep = e.slack > moved;
+            if !keep {
+                out.queue(e.a, e.b);
+            }
+            keep
+        });
         moved
     }
 

@@ -6,6 +6,7 @@
 
 use crate::normal_cone::{CriticalKinds, NormalBand, NormalCone};
 use crate::patch_tree::{PatchLeaf, PatchNode, PatchTree};
+use crate::triangle_distance::separating_gap;
 use geom_param::DPose3;
 use glam::{DMat3, DVec3};
 
@@ -45,9 +46,14 @@ pub struct FrontEntry {
     /// For a pair dropped because its volumes were farther apart than the reach: by how much
     /// (mm), less the motion of B since the front's reference pose, so that the pair stays
     /// dropped for any pose that moves no point of B's component by more than this from the
-    /// reference pose. Negative for every other stop (dropped by cones, certified, a leaf),
-    /// which the next query tests again.
+    /// reference pose; for a pair dropped by its cones, the motion it survives
+    /// ([`CONE_CARRY`]) less that motion. Negative for every other stop (certified, a leaf,
+    /// a cone drop too close to the limit), which the next query tests again.
     pub slack: f64,
+    /// Dropped by its cones: when the motion uses its slack up, the pair is tested again like
+    /// every pair with a negative slack (it does not count towards rebuilding the front, see
+    /// [`crate::cone_front`]).
+    pub by_cones: bool,
 }
 
 /// What a traversal found. Reuse one across queries.
@@ -257,6 +263,94 @@ fn directions(d: DVec3, length: f64, radii: f64) -> NormalCone {
     }
 }
 
+/// The separating-axis gap ([`separating_gap`]) between two leaves' triangles (B's posed by
+/// `frame`) less a rounding allowance (1e-9 of the coordinates' magnitude): positive only for
+/// triangles apart; `None` for a node without a piece.
+fn leaf_triangles_gap(
+    (tree_a, a): (&PatchTree, &PatchNode),
+    (tree_b, b): (&PatchTree, &PatchNode),
+    frame: &PairFrame,
+) -> Option<f64> {
+    let corners = |tree: &PatchTree, node: &PatchNode| match node.leaf {
+        PatchLeaf::Piece(k) => tree.pieces.get(k as usize).map(|p| p.corners),
+        PatchLeaf::Inner => None,
+    };
+    let ta = corners(tree_a, a)?;
+    let tb = corners(tree_b, b)?.map(|p| frame.rotation * p + frame.translation);
+    let magnitude = ta
+        .iter()
+        .chain(tb.iter())
+        .map(|p| p.abs().max_element())
+        .fold(0.0, f64::max);
+    Some(separating_gap(&ta, &tb) - 1e-9 * magnitude)
+}
+
+/// The deviation bound (mm) of a leaf's piece from its exact surface (infinite for a node
+/// without a piece).
+fn piece_deviation(tree: &PatchTree, node: &PatchNode) -> f64 {
+    match node.leaf {
+        PatchLeaf::Piece(k) => tree
+            .pieces
+            .get(k as usize)
+            .map_or(f64::INFINITY, |p| p.deviation),
+        PatchLeaf::Inner => f64::INFINITY,
+    }
+}
+
+/// Fraction of the smaller ball radius of a node pair dropped by its cones by which B may move
+/// (every point of B's component) before the pair is tested again ([`CarriedDrop`]).
+pub const CONE_CARRY: f64 = 0.01;
+
+/// A node pair dropped because its normal cones allow no critical pair and its meshes cannot
+/// meet, with what the test needs to decide whether the drop survives a motion of B.
+struct CarriedDrop<'n> {
+    a: &'n PatchNode,
+    b: &'n PatchNode,
+    /// B's cap in A's frame.
+    cone_b: &'n NormalCone,
+    /// Rotation of B's frame into A's.
+    rotation: &'n DMat3,
+    /// B's centre minus A's (A's frame) and its length.
+    d: DVec3,
+    length: f64,
+    /// Largest distance of a point of B's component from B's origin (mm).
+    b_reach: f64,
+}
+
+impl CarriedDrop<'_> {
+    /// How far (mm) every point of B may move for the pair to stay dropped: m = [`CONE_CARRY`]
+    /// of the smaller ball radius when the pair still fails the tests with B's ball grown by m
+    /// (which holds B's moved ball, so that the directions between the balls hold the moved
+    /// ones) and B's normal cap and band widened by the largest turn that moves no point of B
+    /// by more than m, α = 2 asin(m / 2R) with R B's reach (the front's motion bound counts a
+    /// turn by α as 2 sin(α/2) R), and `gap` (by how much the meshes' volumes, shrunk by their
+    /// insets, are apart; distances between sets shrink by at most the motion) exceeds m;
+    /// -1 (test again) otherwise.
+    /// `moved` is the motion (mm) of B since the front's reference pose, which the margin
+    /// must exceed to be of use.
+    fn slack(&self, gap: f64, moved: f64) -> f64 {
+        let margin = CONE_CARRY * self.a.radius.min(self.b.radius);
+        if !(gap > margin && margin > moved && self.b_reach > 0.0) {
+            return -1.0;
+        }
+        let turn = 2.0 * (margin / (2.0 * self.b_reach)).min(1.0).asin();
+        let cone_b = self.cone_b.widened(turn);
+        let radii = self.a.radius + self.b.radius + margin;
+        let towards_b = directions(self.d, self.length, radii);
+        let mut kinds = CriticalKinds::of(&self.a.cone, &cone_b, &towards_b);
+        if kinds.any() && !(self.a.band.is_all() && self.b.band.is_all()) {
+            let band_b = self.b.band.rotated_by(self.rotation);
+            let band_b = if band_b.is_all() {
+                band_b
+            } else {
+                NormalBand::new(band_b.axis, band_b.lo - turn, band_b.hi + turn)
+            };
+            kinds = kinds.with_bands((&self.a.cone, &self.a.band), (&cone_b, &band_b), &towards_b);
+        }
+        if kinds.any() { -1.0 } else { margin }
+    }
+}
+
 /// Traverses `tree_a` against `tree_b` (B's tree posed by `frame` in A's frame) and fills
 /// `out` with the certified node pairs and the leaf pairs left, dropping every node pair
 /// - whose volumes are farther apart than `reach` (mm), or
@@ -284,12 +378,19 @@ pub fn traverse(
         out.stack.clear();
         return;
     }
+    // The reach of B's points from its frame's origin, as the front's motion bound uses it.
+    let b_reach = nodes_b[0].centre.length() + nodes_b[0].radius;
     while let Some((i, j)) = out.stack.pop() {
         let (Some(a), Some(b)) = (nodes_a.get(i as usize), nodes_b.get(j as usize)) else {
             continue;
         };
         out.visited = out.visited.saturating_add(1);
-        let stopped = |slack: f64| FrontEntry { a: i, b: j, slack };
+        let stopped = |slack: f64| FrontEntry {
+            a: i,
+            b: j,
+            slack,
+            by_cones: false,
+        };
         let cb = frame.rotation * b.centre + frame.translation;
         let d = cb - a.centre;
         let radii = a.radius + b.radius;
@@ -306,6 +407,14 @@ pub fn traverse(
             ..b.cone
         };
         let length = length_squared.sqrt();
+        // The slabs before the cones: they cost a fraction of the cones' tests, and a pair
+        // dropped by distance stays dropped for longer (its margin, not the cones').
+        let lower =
+            slab_lower_bound((tree_a, a), (tree_b, b), frame, d, axis_b).max(length - radii);
+        if lower > reach {
+            out.front.push(stopped(lower - reach - moved));
+            continue;
+        }
         let towards_b = directions(d, length, radii);
         let mut kinds = CriticalKinds::of(&a.cone, &cone_b, &towards_b);
         if kinds.any() && !(a.band.is_all() && b.band.is_all()) {
@@ -316,20 +425,29 @@ pub fn traverse(
         // The meshes lie in the volumes shrunk by their insets (exact triangle tests are only
         // needed where those overlap).
         let inset = a.mesh_inset + b.mesh_inset;
+        let dropped_by_cones = |gap: f64| {
+            let carry = CarriedDrop {
+                a,
+                b,
+                cone_b: &cone_b,
+                rotation: &frame.rotation,
+                d,
+                length,
+                b_reach,
+            };
+            FrontEntry {
+                by_cones: true,
+                ..stopped(carry.slack(gap, moved) - moved)
+            }
+        };
         // Disjoint balls and no critical pair: nothing to find here.
         if !critical && length + inset > radii {
-            out.front.push(stopped(-1.0));
-            continue;
-        }
-        let lower =
-            slab_lower_bound((tree_a, a), (tree_b, b), frame, d, axis_b).max(length - radii);
-        if lower > reach {
-            out.front.push(stopped(lower - reach - moved));
+            out.front.push(dropped_by_cones(length + inset - radii));
             continue;
         }
         let meshes_may_meet = lower + inset <= 0.0;
         if !critical && !meshes_may_meet {
-            out.front.push(stopped(-1.0));
+            out.front.push(dropped_by_cones(lower + inset));
             continue;
         }
         let stop = StopPair {
@@ -346,6 +464,28 @@ pub fn traverse(
         }
         match (a.is_leaf(), b.is_leaf()) {
             (true, true) => {
+                // The triangles' separating gap: without a critical pair the leaves matter only
+                // if their triangles intersect, so that triangles apart are dropped; with one,
+                // the pair is dropped when the gap less the pieces' deviations from their exact
+                // patches exceeds the reach (measured only where the volumes are apart:
+                // overlapping volumes are close, their triangles rarely beyond the reach).
+                let gap = if critical && lower <= 0.0 {
+                    None
+                } else {
+                    leaf_triangles_gap((tree_a, a), (tree_b, b), frame)
+                };
+                if critical {
+                    // The exact patches lie within their pieces' deviations of the triangles.
+                    let deviations = piece_deviation(tree_a, a) + piece_deviation(tree_b, b);
+                    let lower = gap.map_or(f64::NEG_INFINITY, |g| g - deviations);
+                    if lower > reach {
+                        out.front.push(stopped(lower - reach - moved));
+                        continue;
+                    }
+                } else if let Some(gap) = gap.filter(|&g| g > 0.0) {
+                    out.front.push(dropped_by_cones(gap));
+                    continue;
+                }
                 out.leaves.push(stop);
                 out.front.push(stopped(-1.0));
             }

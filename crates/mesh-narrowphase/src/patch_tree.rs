@@ -483,6 +483,9 @@ fn piece_item(
     let mut tensors = [CurvatureTensor::ZERO; 3];
     let mut smooth = true;
     let mut apex_corners: [Option<u32>; 3] = [None; 3];
+    // Tangents of the solid's edges at the piece's points on them (see `crease_band`), and
+    // whether some such point has no known tangent or is a vertex of the solid.
+    let mut tangents = EdgeTangents::default();
     let edge_is_concave = |id: EdgeId| {
         solid
             .edges
@@ -521,11 +524,12 @@ fn piece_item(
         match feature {
             CornerFeature::Interior => {}
             CornerFeature::Vertex(vertex) => match mesh.vertex_locations.get(vertex as usize) {
-                Some(FeatureLocation::Edge { id, .. }) => {
+                Some(FeatureLocation::Edge { id, t }) => {
                     if let Some(&n) = mesh.normals.get(vertex as usize) {
                         extra[extra_count] = n;
                         extra_count += 1;
                     }
+                    tangents.add_at(solid, *id, *t);
                     smooth &= !edge_is_concave(*id);
                 }
                 Some(FeatureLocation::Vertex { .. }) => {
@@ -533,10 +537,12 @@ fn piece_item(
                         extra[extra_count] = n;
                         extra_count += 1;
                     }
+                    tangents.unknown = true;
                 }
                 _ => {}
             },
             CornerFeature::Crease { i, j, edge } => {
+                tangents.add_chord(mesh, solid, (i, j), edge);
                 let b = b.to_array();
                 let tri = mesh.triangles[t];
                 let weight = |v: u32| (0..3).find(|&m| tri[m] == v).map_or(0.0, |m| b[m]);
@@ -584,12 +590,24 @@ fn piece_item(
         }
     }
     let sampled = &all[..count];
+    // The largest angle between two samples: one `acos` of the least cosine.
     let spread = sampled
         .iter()
-        .flat_map(|a| sampled.iter().map(move |b| a.angle_between(*b)))
-        .fold(0.0, f64::max);
-    // A crease's arc of normals is sampled at its ends only: no band for such a piece.
-    let band = if extra_count == 0 {
+        .flat_map(|a| {
+            sampled
+                .iter()
+                .map(move |b| a.dot(*b) / (a.length_squared() * b.length_squared()).sqrt())
+        })
+        .fold(1.0_f64, f64::min)
+        .clamp(-1.0, 1.0)
+        .acos();
+    // A piece on an edge of the solid also holds the arc of normals between the edge's two
+    // faces at each of its edge points, all normal to the edge: a band about the edge.
+    let band = if tangents.unknown || face_count < 3 {
+        NormalBand::ALL
+    } else if tangents.count > 0 {
+        crease_band(sampled, spread, tangents.list())
+    } else if extra_count == 0 {
         piece_band(sampled, spread)
     } else {
         NormalBand::ALL
@@ -654,6 +672,111 @@ fn piece_band(sampled: &[DVec3], spread: f64) -> NormalBand {
         return NormalBand::ALL;
     }
     NormalBand::new(axis, lo - widen, hi + widen)
+}
+
+/// Unit tangents of the solid's edges sampled at a piece's points on them: at its corners on
+/// edges and, for a side along an edge (a crease), at the side's mesh vertices and along its
+/// chord (by the mean value theorem the chord is a positive combination of the tangents between
+/// its ends).
+#[derive(Default)]
+struct EdgeTangents {
+    samples: [DVec3; 9],
+    count: usize,
+    /// Some edge point of the piece is a vertex of the solid (whose normals are a whole
+    /// spherical polygon, not an arc), or an edge has no tangent there.
+    unknown: bool,
+}
+
+impl EdgeTangents {
+    fn list(&self) -> &[DVec3] {
+        &self.samples[..self.count]
+    }
+
+    fn push(&mut self, tangent: Option<DVec3>) {
+        match tangent.filter(|t| t.is_finite()) {
+            Some(t) if self.count < self.samples.len() => {
+                self.samples[self.count] = t;
+                self.count += 1;
+            }
+            Some(_) => {}
+            None => self.unknown = true,
+        }
+    }
+
+    /// The tangent of edge `id` at parameter `t`.
+    fn add_at(&mut self, solid: &Solid, id: EdgeId, t: f64) {
+        let tangent = solid.edges.get(id.0 as usize).and_then(|e| {
+            let curve = &e.curve;
+            curve.tangent(curve.domain().normalize(t))
+        });
+        self.push(tangent);
+    }
+
+    /// The tangents at the ends of the mesh side from vertex `i` to vertex `j` along edge
+    /// `edge`, and its chord.
+    fn add_chord(&mut self, mesh: &ComponentMesh, solid: &Solid, (i, j): (u32, u32), edge: EdgeId) {
+        for v in [i, j] {
+            match mesh.vertex_locations.get(v as usize) {
+                Some(FeatureLocation::Edge { id, t }) if *id == edge => {
+                    self.add_at(solid, edge, *t)
+                }
+                _ => self.unknown = true,
+            }
+        }
+        let chord = match (
+            mesh.positions.get(i as usize),
+            mesh.positions.get(j as usize),
+        ) {
+            (Some(p), Some(q)) => (*q - *p).try_normalize(),
+            _ => None,
+        };
+        self.push(chord);
+    }
+}
+
+/// The band of a piece on an edge of the solid: about the mean `axis` of the edge's tangents
+/// `tangents` at the piece (each turned to the first's side). Every normal at an edge point
+/// (the face normals there and the arc between them, whichever arc) is normal to the tangent
+/// t there, so its angle from `axis` lies within angle(axis, ±t) of 90°: within τ, the largest
+/// such angle over the samples, widened by [`BAND_OVERSHOOT`] of it (the tangent turns
+/// monotonically between samples a piece apart, up to second order) and [`NORMAL_FLOOR`]. The
+/// face normals `sampled` inside the piece add their own range of angles, widened as in
+/// [`piece_band`]. On a circular edge the samples' tangents bound the turn exactly and the
+/// band is as wide as the piece's turn along the edge, where the piece's cap spans the whole
+/// dihedral angle.
+fn crease_band(sampled: &[DVec3], spread: f64, tangents: &[DVec3]) -> NormalBand {
+    let Some(&first) = tangents.first() else {
+        return NormalBand::ALL;
+    };
+    let Some(axis) = tangents
+        .iter()
+        .map(|t| if t.dot(first) < 0.0 { -*t } else { *t })
+        .sum::<DVec3>()
+        .try_normalize()
+    else {
+        return NormalBand::ALL;
+    };
+    let turn = tangents
+        .iter()
+        .map(|t| axis.dot(*t).abs().min(1.0).acos())
+        .fold(0.0, f64::max);
+    let half = std::f64::consts::FRAC_PI_2;
+    let crease = (1.0 + BAND_OVERSHOOT) * turn + NORMAL_FLOOR;
+    let (lo, hi) = sampled
+        .iter()
+        .map(|n| axis.dot(*n).clamp(-1.0, 1.0).acos())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), a| {
+            (lo.min(a), hi.max(a))
+        });
+    let widen = BAND_OVERSHOOT * (hi - lo) + INTERIOR_SPREAD * spread.powi(3) + NORMAL_FLOOR;
+    let (lo, hi) = (
+        (lo - widen).min(half - crease),
+        (hi + widen).max(half + crease),
+    );
+    if !(lo.is_finite() && hi.is_finite()) {
+        return NormalBand::ALL;
+    }
+    NormalBand::new(axis, lo, hi)
 }
 
 /// Cosine of the half-angle of a node's normal cone above which a split by normals is tried
@@ -903,8 +1026,15 @@ fn build_node(items: &[Item], order: &mut [u32], nodes: &mut Vec<PatchNode>) -> 
             .iter()
             .map(|&i| items[i as usize].count)
             .sum::<usize>();
-        let mean = samples()
-            .fold(CurvatureTensor::ZERO, |acc, t| acc.plus(&t))
+        // Restriction is linear: the mean of the restricted samples is the restricted mean.
+        let mean = order
+            .iter()
+            .flat_map(|&i| {
+                let item = &items[i as usize];
+                item.tensors[..item.count].iter()
+            })
+            .fold(CurvatureTensor::ZERO, |acc, t| acc.plus(t))
+            .restricted(cone.axis)
             .scaled(1.0 / count.max(1) as f64);
         let spread = samples().map(|t| t.distance(&mean)).fold(0.0, f64::max);
         (mean, spread)

@@ -4,7 +4,7 @@
 use crate::patch_tree::PatchTree;
 use crate::proxy_mesh::ProxyCache;
 use crate::triangle_bvh::TriangleBvh;
-use geom_param::{ComponentKind, ComponentMesh, ObjectModel, Solid};
+use geom_param::{ComponentMesh, ObjectModel, Solid};
 use std::sync::OnceLock;
 
 /// What [`crate::MeshNarrowphase`] prepares for one object.
@@ -20,8 +20,7 @@ pub struct PreparedComponent {
     /// Tree over the component mesh's triangles (object frame).
     pub bvh: TriangleBvh,
     /// The hierarchy of exact patches with normal cones ([`PatchTree`]): built with the object
-    /// for concave components, on first use for convex ones (which need it only when their
-    /// hulls overlap another's).
+    /// for every component (a `PreparedComponent` made otherwise builds it on first use).
     pub patch_tree: OnceLock<PatchTree>,
     /// Proxy meshes, built on first use (only by [`crate::ConcavePath::ProxyRegions`]).
     pub proxies: ProxyCache,
@@ -43,23 +42,18 @@ impl PreparedComponent {
 }
 
 impl PreparedObject {
-    /// Builds the triangle trees of all of `object`'s components and the patch trees of its
-    /// concave ones (convex components' patch trees and all proxies come later, lazily).
+    /// Builds the triangle trees and the patch trees of all of `object`'s components (proxies
+    /// come later, lazily, for the proxy path only).
     #[must_use]
     pub fn new(object: &ObjectModel) -> Self {
         let components = object
             .meshes
             .iter()
-            .enumerate()
-            .map(|(i, m)| {
-                let patch_tree = OnceLock::new();
-                if object
-                    .components
-                    .get(i)
-                    .is_some_and(|c| c.kind == ComponentKind::Concave)
-                {
-                    let _ = patch_tree.set(PatchTree::build(m, &object.solid));
-                }
+            .map(|m| {
+                // Every component's, convex ones too: a convex component meets the normal-cone
+                // path against any concave component (or when hulls overlap), and building its
+                // tree there would make that pair's first query tens of milliseconds slower.
+                let patch_tree = OnceLock::from(PatchTree::build(m, &object.solid));
                 PreparedComponent {
                     bvh: TriangleBvh::new(&m.positions, &m.triangles),
                     patch_tree,

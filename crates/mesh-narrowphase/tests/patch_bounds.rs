@@ -115,19 +115,51 @@ fn every_exact_normal_lies_in_its_leaf_and_ancestors_bounds() {
 /// A tube's inner and outer cylinders: every piece lying inside a cylinder face (no corner on
 /// an edge) gets a band about the tube's axis (±z) at most a tenth as wide as its cap, which is
 /// as wide as the piece's turn about the axis (the band's width is the third-order allowance
-/// and the floor only).
+/// and the floor only). A piece with a corner on one of the rims (circles about z, where the
+/// cylinder meets an annulus) gets a band about the rim's tangent instead, which holds every
+/// direction normal to the rim's tangent at the piece's corners (the normals of the rim: the
+/// arc from the cylinder's radial normal to the annulus's ±z, whichever quadrant).
 #[test]
 fn pieces_of_a_cylinder_have_thin_bands_about_its_axis() {
     let model = fixture("tube", 0.05);
-    let mut thin = 0;
+    let (mut thin, mut rims) = (0, 0);
     for mesh in &model.meshes {
         let tree = PatchTree::build(mesh, &model.solid);
+        let (bottom, top) = mesh
+            .positions
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.z), hi.max(p.z))
+            });
         for node in &tree.nodes {
-            let PatchLeaf::Piece(_) = node.leaf else {
+            let PatchLeaf::Piece(k) = node.leaf else {
                 continue;
             };
             // Pieces of the cylinders have radial normals: caps about a horizontal axis.
             if node.cone.axis.z.abs() > 0.3 || node.band.is_all() {
+                continue;
+            }
+            if node.band.axis.z.abs() <= 1e-9 {
+                // About a rim's tangent: every direction normal to the tangent at a corner on
+                // a rim (the tube's top or bottom plane).
+                let rim = |z: f64| (z - bottom).abs().min((z - top).abs()) <= 1e-9 * top.abs();
+                for corner in tree.pieces[k as usize].corners {
+                    if !rim(corner.z) {
+                        continue;
+                    }
+                    let radial = DVec3::new(corner.x, corner.y, 0.0).normalize();
+                    for step in 0..24 {
+                        let phi = f64::from(step) * std::f64::consts::TAU / 24.0;
+                        let n = radial * phi.cos() + DVec3::Z * phi.sin();
+                        let out = outside_band(&node.band, n);
+                        assert!(
+                            out <= 1e-9,
+                            "rim normal {n} outside {:?} by {out:e}",
+                            node.band
+                        );
+                    }
+                }
+                rims += 1;
                 continue;
             }
             assert!(
@@ -147,4 +179,5 @@ fn pieces_of_a_cylinder_have_thin_bands_about_its_axis() {
         }
     }
     assert!(thin > 50, "{thin} cylinder pieces with a band");
+    assert!(rims > 50, "{rims} rim pieces with a band");
 }

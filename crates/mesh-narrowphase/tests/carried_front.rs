@@ -1,0 +1,186 @@
+//! The traversal front carried between queries of one pair (issue 15, part 3): node pairs
+//! dropped by their normal cones, and leaf pairs whose triangles a separating axis keeps
+//! apart, stay dropped while B moves less than their margin. A query that starts from the
+//! carried front must find what a fresh query finds: checked against fresh scratch along
+//! random walks of small motions (below and above the margins) of a pencil leaning in a
+//! tube's hole and of a pencil lying in (and through) a bowl. The separating-axis gap is
+//! checked against exact triangle distances and intersection tests.
+
+mod common;
+
+use common::*;
+use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectFile, ObjectModel};
+use mesh_narrowphase::triangle_distance::{closest_between_triangles, separating_gap};
+use mesh_narrowphase::triangle_intersection::triangles_intersect;
+use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch, MeshVerdict};
+
+fn fixture(name: &str) -> ObjectModel {
+    let path = format!(
+        "{}/../../fixtures/objects/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).expect("fixture exists");
+    ObjectFile::from_json(&text)
+        .expect("valid fixture")
+        .build(&MeshOptions {
+            chordal_tolerance: 0.05,
+        })
+        .expect("valid tolerance")
+}
+
+/// Every component pair's verdict, seeds (A's and B's points) and intersecting triangle pairs.
+type Answer = Vec<(MeshVerdict, Vec<(DVec3, DVec3)>, Vec<(u32, u32)>)>;
+
+fn answer(a: &Prepared, b: &Prepared, pose_ab: &DPose3, scratch: &mut MeshScratch) -> Answer {
+    let band = ContactBand {
+        margin: 1.0,
+        delta1: -0.001,
+        delta2: 0.1,
+    };
+    let mut all = Vec::new();
+    for ca in &a.object.components {
+        for cb in &b.object.components {
+            let (verdict, out) = query_path(
+                ConcavePath::NormalCones,
+                (a, ca.id),
+                (b, cb.id),
+                pose_ab,
+                &band,
+                scratch,
+            );
+            let seeds = out
+                .seeds
+                .iter()
+                .map(|s| (s.a.local_point, s.b.local_point))
+                .collect();
+            let mut pairs = out.penetrating_pairs.clone();
+            pairs.sort_unstable();
+            all.push((verdict, seeds, pairs));
+        }
+    }
+    all
+}
+
+/// Walks B from `start` by random steps (translations and turns of the sizes in `steps`,
+/// cycled) and compares, at every pose, the answer of a scratch carried along the walk with a
+/// fresh one's: the same verdicts and intersecting triangle pairs, and every seed of either
+/// within `near` (mm, a leaf's size: the seeds of one minimum may come from neighbouring leaf
+/// pairs) of a seed of the other on both objects.
+fn walk(a: &Prepared, b: &Prepared, start: DPose3, steps: &[(f64, f64)], near: f64) {
+    let mut rng = Rng(0x5eed_1234_abcd_0001);
+    let mut carried = MeshScratch::default();
+    let mut pose_ab = start;
+    let mut compared = 0;
+    for k in 0..40 {
+        let (shift, turn) = steps[k % steps.len()];
+        let direction = DVec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        )
+        .normalize();
+        let axis = DVec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        )
+        .normalize();
+        pose_ab = pose(
+            (DQuat::from_axis_angle(axis, turn) * pose_ab.rotation).normalize(),
+            pose_ab.translation + direction * shift,
+        );
+        let warm = answer(a, b, &pose_ab, &mut carried);
+        let fresh = answer(a, b, &pose_ab, &mut MeshScratch::default());
+        assert_eq!(warm.len(), fresh.len());
+        for ((wv, ws, wp), (fv, fs, fp)) in warm.iter().zip(&fresh) {
+            assert_eq!(wv, fv, "step {k}: verdicts");
+            assert_eq!(wp, fp, "step {k}: intersecting triangle pairs");
+            let covered = |from: &[(DVec3, DVec3)], to: &[(DVec3, DVec3)]| {
+                from.iter().all(|(pa, pb)| {
+                    to.iter()
+                        .any(|(qa, qb)| pa.distance(*qa) <= near && pb.distance(*qb) <= near)
+                })
+            };
+            assert!(covered(ws, fs), "step {k}: warm seeds {ws:?}, fresh {fs:?}");
+            assert!(covered(fs, ws), "step {k}: fresh seeds {fs:?}, warm {ws:?}");
+            compared += ws.len() + fs.len() + wp.len();
+        }
+    }
+    assert!(compared > 0, "the walk found nothing to compare");
+}
+
+/// Steps (mm, rad) below the carried margins (a hundredth of a leaf's ball, about 0.005 mm),
+/// about them, and far above.
+const STEPS: [(f64, f64); 5] = [
+    (1e-4, 1e-7),
+    (1e-3, 1e-6),
+    (5e-3, 2e-5),
+    (2e-4, 0.0),
+    (0.05, 3e-4),
+];
+
+#[test]
+fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_in_a_tube() {
+    let tube = Prepared::new(fixture("tube"));
+    let pencil = Prepared::new(fixture("pencil"));
+    let start = pose(
+        DQuat::from_array([0.0, 0.024325244977882785, 0.0, 0.9997040974492232]),
+        DVec3::new(-3.87032714844386, 0.0, -49.79149919838436),
+    );
+    walk(&tube, &pencil, start, &STEPS, 2.5);
+}
+
+#[test]
+fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_through_a_bowl() {
+    let bowl = Prepared::new(fixture("bowl"));
+    let pencil = Prepared::new(fixture("pencil"));
+    let start = pose(
+        DQuat::from_array([0.0, 0.9238795325112867, 0.0, 0.38268343236508984]),
+        DVec3::new(-115.5, 0.0, 131.0314536606893),
+    );
+    walk(&bowl, &pencil, start, &STEPS, 2.5);
+}
+
+/// The separating-axis gap of random triangle pairs (apart, touching, crossing, at scales from
+/// 1e-3 to 1e2 mm) is at most their exact distance (Ericson's closest points, exact for
+/// disjoint triangles), at most 0 for intersecting ones, and positive for disjoint ones
+/// farther apart than rounding.
+#[test]
+fn the_separating_gap_bounds_the_triangle_distance_from_below() {
+    let mut rng = Rng(0x7a1e_9bb1_0000_0042);
+    let (mut apart, mut crossing) = (0, 0);
+    for _ in 0..20_000 {
+        let scale = 10f64.powf(rng.range(-3.0, 2.0));
+        let corner = |rng: &mut Rng, centre: DVec3| {
+            centre
+                + DVec3::new(
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                ) * scale
+        };
+        let t1 = [DVec3::ZERO; 3].map(|c| corner(&mut rng, c));
+        let offset = DVec3::new(rng.range(-2.0, 2.0), rng.range(-2.0, 2.0), 0.0) * scale;
+        let t2 = [offset; 3].map(|c| corner(&mut rng, c));
+        let gap = separating_gap(&t1, &t2);
+        let rounding = 1e-12 * scale;
+        if triangles_intersect(&t1, &t2) {
+            assert!(gap <= rounding, "{t1:?} {t2:?} intersect, gap {gap}");
+            crossing += 1;
+        } else {
+            let distance = closest_between_triangles(&t1, &t2).distance;
+            assert!(
+                gap <= distance + rounding,
+                "gap {gap} > distance {distance}"
+            );
+            if distance > 1e-9 * scale {
+                assert!(gap > 0.0, "{t1:?} {t2:?} apart by {distance}, gap {gap}");
+                apart += 1;
+            }
+        }
+    }
+    assert!(
+        apart > 1000 && crossing > 500,
+        "{apart} apart, {crossing} crossing"
+    );
+}
