@@ -3,7 +3,12 @@
 //! [`crate::penetration`].
 //!
 //! Every step lies inside a trust region on the step length (in mm: variables are scaled by
-//! their speeds |∂P/∂x_i|) and is accepted only if f does not increase. Where the connecting
+//! their speeds |∂P/∂x_i|) and is accepted only if f does not increase (up to rounding, and,
+//! for a step onto another feature, up to |d| x the model tolerance by which a face and its
+//! edge may disagree); a coordinate already on its bound that the step pushes outward is held
+//! there while the others move. A solve that stalls on two faces, or that penetrates without
+//! converging, is retried from the nearest edges (an edge's witness) and as a plain
+//! minimisation from its end ([`solve`]). Where the connecting
 //! vector is within 30 degrees of the normals it is the Newton step for the distance |d| itself
 //! ([`distance_newton_step`]), which is exact along the rolling directions where f is quartic
 //! (near touch); otherwise, or straight after such a step was rejected, the Newton step on f,
