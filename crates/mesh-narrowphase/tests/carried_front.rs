@@ -9,24 +9,10 @@
 mod common;
 
 use common::*;
-use geom_param::{DPose3, DQuat, DVec3, MeshOptions, ObjectFile, ObjectModel};
+use geom_param::{DPose3, DQuat, DVec3};
 use mesh_narrowphase::triangle_distance::{closest_between_triangles, separating_gap};
 use mesh_narrowphase::triangle_intersection::triangles_intersect;
 use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch, MeshVerdict};
-
-fn fixture(name: &str) -> ObjectModel {
-    let path = format!(
-        "{}/../../fixtures/objects/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).expect("fixture exists");
-    ObjectFile::from_json(&text)
-        .expect("valid fixture")
-        .build(&MeshOptions {
-            chordal_tolerance: 0.05,
-        })
-        .expect("valid tolerance")
-}
 
 /// Every component pair's verdict, seeds (A's and B's points) and intersecting triangle pairs.
 type Answer = Vec<(MeshVerdict, Vec<(DVec3, DVec3)>, Vec<(u32, u32)>)>;
@@ -121,8 +107,8 @@ const STEPS: [(f64, f64); 5] = [
 
 #[test]
 fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_in_a_tube() {
-    let tube = Prepared::new(fixture("tube"));
-    let pencil = Prepared::new(fixture("pencil"));
+    let tube = Prepared::new(fixture_object("tube", 0.05));
+    let pencil = Prepared::new(fixture_object("pencil", 0.05));
     let start = pose(
         DQuat::from_array([0.0, 0.024325244977882785, 0.0, 0.9997040974492232]),
         DVec3::new(-3.87032714844386, 0.0, -49.79149919838436),
@@ -132,8 +118,8 @@ fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_in_a_tube() {
 
 #[test]
 fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_through_a_bowl() {
-    let bowl = Prepared::new(fixture("bowl"));
-    let pencil = Prepared::new(fixture("pencil"));
+    let bowl = Prepared::new(fixture_object("bowl", 0.05));
+    let pencil = Prepared::new(fixture_object("pencil", 0.05));
     let start = pose(
         DQuat::from_array([0.0, 0.9238795325112867, 0.0, 0.38268343236508984]),
         DVec3::new(-115.5, 0.0, 131.0314536606893),

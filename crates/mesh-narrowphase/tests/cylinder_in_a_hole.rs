@@ -15,27 +15,13 @@
 mod common;
 
 use common::*;
-use geom_param::{DQuat, DVec3, MeshOptions, ObjectFile, ObjectModel};
+use geom_param::{DQuat, DVec3};
 use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch};
-
-fn fixture(name: &str) -> ObjectModel {
-    let path = format!(
-        "{}/../../fixtures/objects/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).expect("fixture exists");
-    ObjectFile::from_json(&text)
-        .expect("valid fixture")
-        .build(&MeshOptions {
-            chordal_tolerance: 0.05,
-        })
-        .expect("valid tolerance")
-}
 
 #[test]
 fn a_pencil_leaning_in_a_tube_gets_a_seed_at_each_rim_contact() {
-    let tube = Prepared::new(fixture("tube"));
-    let pencil = Prepared::new(fixture("pencil"));
+    let tube = Prepared::new(fixture_object("tube", 0.05));
+    let pencil = Prepared::new(fixture_object("pencil", 0.05));
     // The fixture's pose of the pencil (the tube at the identity).
     let pose_b = pose(
         DQuat::from_array([0.0, 0.024325244977882785, 0.0, 0.9997040974492232]),

@@ -5,24 +5,13 @@
 //! cones, tori and revolved arcs, a NURBS loft); and the bands of pieces on a cylinder are thin,
 //! which is what lets a pair of crossed or tilted cylinders be pruned.
 
-use geom_param::{ComponentMesh, MeshOptions, ObjectFile, ObjectModel, Solid};
+mod common;
+
+use common::fixture_object;
+use geom_param::{ComponentMesh, Solid};
 use glam::{DVec2, DVec3};
 use mesh_narrowphase::normal_cone::{NormalBand, NormalCone};
 use mesh_narrowphase::patch_tree::{PatchLeaf, PatchTree};
-
-fn fixture(name: &str, tolerance: f64) -> ObjectModel {
-    let path = format!(
-        "{}/../../fixtures/objects/{name}.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(&path).expect("fixture exists");
-    ObjectFile::from_json(&text)
-        .expect("valid fixture")
-        .build(&MeshOptions {
-            chordal_tolerance: tolerance,
-        })
-        .expect("valid tolerance")
-}
 
 /// The angle (rad) by which `n` lies outside the cap (0 inside).
 fn outside_cap(cap: &NormalCone, n: DVec3) -> f64 {
@@ -100,7 +89,7 @@ fn every_exact_normal_lies_in_its_leaf_and_ancestors_bounds() {
         ("rounded-box", 0.05),
         ("bracket", 0.05),
     ] {
-        let model = fixture(name, tolerance);
+        let model = fixture_object(name, tolerance);
         for mesh in &model.meshes {
             let tree = PatchTree::build(mesh, &model.solid);
             if tree.nodes.is_empty() {
@@ -121,7 +110,7 @@ fn every_exact_normal_lies_in_its_leaf_and_ancestors_bounds() {
 /// arc from the cylinder's radial normal to the annulus's ±z, whichever quadrant).
 #[test]
 fn pieces_of_a_cylinder_have_thin_bands_about_its_axis() {
-    let model = fixture("tube", 0.05);
+    let model = fixture_object("tube", 0.05);
     let (mut thin, mut rims) = (0, 0);
     for mesh in &model.meshes {
         let tree = PatchTree::build(mesh, &model.solid);

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use geom_param::{
-    ComponentId, ComponentKind, DPose3, DQuat, DVec3, MeshOptions, ObjectDescription, ObjectModel,
+    ComponentId, ComponentKind, DPose3, DQuat, DVec3, MeshOptions, ObjectFile, ObjectModel,
     Profile, SegmentSpec,
 };
 use mesh_narrowphase::{
@@ -151,12 +151,18 @@ pub fn socket(inner: f64, outer: f64, zc: f64, tolerance: f64) -> ObjectModel {
 }
 
 pub fn paper_object(name: &str, tolerance: f64) -> ObjectModel {
+    fixture_object(name, tolerance)
+}
+
+/// A fixture object of `fixtures/objects/` (a solid of revolution or a general solid), meshed at
+/// the chordal `tolerance` (mm).
+pub fn fixture_object(name: &str, tolerance: f64) -> ObjectModel {
     let path = format!(
         "{}/../../fixtures/objects/{name}.json",
         env!("CARGO_MANIFEST_DIR")
     );
     let text = std::fs::read_to_string(&path).expect("fixture exists");
-    ObjectDescription::from_json(&text)
+    ObjectFile::from_json(&text)
         .expect("valid fixture")
         .build(&MeshOptions {
             chordal_tolerance: tolerance,
