@@ -11,7 +11,8 @@ const CONTINUOUS_NORMAL_ANGLE: f64 = 1e-9;
 const ROUNDING: f64 = 16.0 * f64::EPSILON;
 
 /// Adds `candidate` to `contacts` unless one already there is the same minimum: both closest
-/// points within `tolerance` (mm) of the candidate's; or, when either is a continuous contact
+/// points within `tolerance` (mm) of the candidate's and the same distance ([`same_distance`]);
+/// or, when either is a continuous contact
 /// ([`Contact::is_continuous`]), the same continuous region of the two solids `(a, b)`
 /// ([`same_continuous_region`]). Of two duplicates the one with the smaller final gradient is
 /// kept. Returns true when the candidate was merged away.
@@ -27,6 +28,7 @@ pub(crate) fn insert_or_merge(
         } else {
             c.point_a.distance(candidate.point_a) <= tolerance
                 && c.point_b.distance(candidate.point_b) <= tolerance
+                && same_distance(c, &candidate)
         }
     };
     match contacts.iter_mut().find(|c| same(c)) {
@@ -41,6 +43,36 @@ pub(crate) fn insert_or_merge(
             false
         }
     }
+}
+
+/// Whether two contacts are at the same distance within the sum of their error estimates and
+/// the rounding of their coordinates (mm).
+///
+/// Why: the point tolerance follows the point error estimate, which near a conformal touch is
+/// large (0.13 mm for a goblet's wall touching a bowl's inside at 3.7e-10 mm, condition
+/// 8e11), and it swallowed a separate minimum 12.6 mm away at 0.0225 mm, whose error estimate
+/// is 3e-13 mm: one minimum's two refinements agree in distance even where their points
+/// may not.
+fn same_distance(x: &Contact, y: &Contact) -> bool {
+    (x.distance - y.distance).abs() <= distance_tolerance(x, y)
+}
+
+/// The sum of two contacts' distance error estimates and the rounding of their largest
+/// coordinate (at least 1 mm) (mm).
+fn distance_tolerance(x: &Contact, y: &Contact) -> f64 {
+    let coordinates = [x.point_a, x.point_b, y.point_a, y.point_b]
+        .iter()
+        .fold(1.0_f64, |m, p| m.max(p.length()));
+    distance_agreement(
+        x.diagnostics.error_estimate + y.diagnostics.error_estimate,
+        coordinates,
+    )
+}
+
+/// How far apart (mm) two distances of one minimum may be: the sum of their error estimates
+/// (`estimates`, mm) and the rounding of coordinates of size `coordinates` (mm).
+pub(crate) fn distance_agreement(estimates: f64, coordinates: f64) -> f64 {
+    estimates + ROUNDING * coordinates
 }
 
 /// Whether two contacts, one of them continuous, are representatives of one continuous region
@@ -59,15 +91,7 @@ fn same_continuous_region(x: &Contact, y: &Contact, (a, b): (&Solid, &Solid)) ->
     {
         return false;
     }
-    let coordinates = x
-        .point_a
-        .length()
-        .max(x.point_b.length())
-        .max(y.point_a.length())
-        .max(y.point_b.length())
-        .max(1.0);
-    let tolerance =
-        x.diagnostics.error_estimate + y.diagnostics.error_estimate + ROUNDING * coordinates;
+    let tolerance = distance_tolerance(x, y);
     (x.distance - y.distance).abs() <= tolerance
         && x.normal.angle_between(y.normal) <= CONTINUOUS_NORMAL_ANGLE
         && (y.point_a - x.point_a).dot(x.normal).abs() <= tolerance
@@ -295,5 +319,34 @@ mod tests {
         far.point_b += DVec3::X * 1e-3;
         assert!(!insert_or_merge(&mut contacts, far, 1e-4, solids));
         assert_eq!(contacts.len(), 2);
+    }
+
+    /// Points within a (large) merge tolerance but distances apart by more than the two error
+    /// estimates are two minima, in either order; within the estimates, one.
+    #[test]
+    fn isolated_minima_at_other_distances_stay_apart() {
+        let x = boxes();
+        let solids = (&x.solid, &x.solid);
+        let faces = (on_face(x.face), on_face(x.face));
+        let mut touch = contact(DVec3::ZERO, 0.0, DVec3::Z, faces, RefineStatus::Converged);
+        touch.diagnostics.error_estimate = 5e-5;
+        let other = contact(
+            DVec3::new(12.0, 0.0, 0.0),
+            0.02,
+            DVec3::Z,
+            faces,
+            RefineStatus::Converged,
+        );
+        for (first, second) in [(touch, other), (other, touch)] {
+            let mut contacts = vec![first];
+            assert!(!insert_or_merge(&mut contacts, second, 13.0, solids));
+            assert_eq!(contacts.len(), 2);
+        }
+        let mut within = touch;
+        within.distance = 4e-5;
+        within.point_a += DVec3::X * 10.0;
+        let mut contacts = vec![touch];
+        assert!(insert_or_merge(&mut contacts, within, 13.0, solids));
+        assert_eq!(contacts.len(), 1);
     }
 }

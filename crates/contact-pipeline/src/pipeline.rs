@@ -1,6 +1,6 @@
 //! The three-stage pipeline, generic over its stages.
 
-use crate::merge::insert_or_merge;
+use crate::merge::{distance_agreement, insert_or_merge};
 use crate::options::{ContactOptions, OptionsError, QueryDepth};
 use crate::report::{Contact, PairReport, PairState};
 use bvh_hybrid::{BroadPhase, HybridBvh};
@@ -486,7 +486,8 @@ pub(crate) struct FullQueryRecord {
 
 impl FullQueryRecord {
     /// Notes `refined` (from `seed`) when it is a local minimum in the widened band and not the
-    /// same minimum as one already noted (points within [`merge_tolerance`]).
+    /// same minimum as one already noted (points within [`merge_tolerance`], distances within
+    /// their error estimates: as contacts are merged).
     fn note(
         &mut self,
         refined: &RefinedContact,
@@ -501,8 +502,14 @@ impl FullQueryRecord {
         }
         let tolerance = merge_tolerance(refined, scale);
         let same = self.minima.iter().any(|(m, _, _)| {
+            let coordinates = [m.point_a, m.point_b, refined.point_a, refined.point_b]
+                .iter()
+                .fold(1.0_f64, |c, p| c.max(p.length()));
+            let estimates = m.diagnostics.error_estimate + refined.diagnostics.error_estimate;
             m.point_a.distance(refined.point_a) <= tolerance
                 && m.point_b.distance(refined.point_b) <= tolerance
+                && (m.distance - refined.distance).abs()
+                    <= distance_agreement(estimates, coordinates)
         });
         if !same {
             self.minima
