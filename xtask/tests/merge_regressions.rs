@@ -42,7 +42,10 @@ fn a_conformal_touch_does_not_swallow_a_minimum_12_mm_away() {
         distances.sort_by(f64::total_cmp);
         assert_eq!(distances.len(), 2, "{order}: {report:?}");
         assert!(distances[0].abs() <= 1e-7, "{order}: {distances:?}");
-        assert!((distances[1] - 0.022537536984).abs() <= 1e-9, "{order}: {distances:?}");
+        assert!(
+            (distances[1] - 0.022537536984).abs() <= 1e-9,
+            "{order}: {distances:?}"
+        );
         let far = report
             .contacts
             .iter()

@@ -52,6 +52,7 @@ pub mod seeds;
 pub mod triangle_bvh;
 pub mod triangle_distance;
 pub mod triangle_intersection;
+pub mod triangle_rings;
 
 pub use default_phase::{ConcavePath, MeshNarrowphase, MeshNarrowphaseOptions, MeshScratch};
 pub use mesh_phase::{

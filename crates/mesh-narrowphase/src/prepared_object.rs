@@ -4,6 +4,7 @@
 use crate::patch_tree::PatchTree;
 use crate::proxy_mesh::ProxyCache;
 use crate::triangle_bvh::TriangleBvh;
+use crate::triangle_rings::TriangleRings;
 use geom_param::{ComponentMesh, ObjectModel, Solid};
 use std::sync::OnceLock;
 
@@ -19,6 +20,8 @@ pub struct PreparedObject {
 pub struct PreparedComponent {
     /// Tree over the component mesh's triangles (object frame).
     pub bvh: TriangleBvh,
+    /// The triangles around each mesh vertex.
+    pub rings: TriangleRings,
     /// The hierarchy of exact patches with normal cones ([`PatchTree`]): built with the object
     /// for every component (a `PreparedComponent` made otherwise builds it on first use).
     pub patch_tree: OnceLock<PatchTree>,
@@ -56,6 +59,7 @@ impl PreparedObject {
                 let patch_tree = OnceLock::from(PatchTree::build(m, &object.solid));
                 PreparedComponent {
                     bvh: TriangleBvh::new(&m.positions, &m.triangles),
+                    rings: TriangleRings::new(m.positions.len(), &m.triangles),
                     patch_tree,
                     proxies: ProxyCache::default(),
                     size: m
