@@ -1,7 +1,7 @@
 //! Merging refined seeds that reached the same local minimum, or the same continuous contact.
 
 use crate::report::Contact;
-use geom_param::{FaceId, FeatureId, Solid};
+use geom_param::{DVec3, FaceId, FeatureId, Solid};
 
 /// Largest angle (rad) between the normals of two representatives of one continuous contact:
 /// its normal is exact (a flat face's, the common normal of parallel cylinders), so this only
@@ -54,24 +54,28 @@ pub(crate) fn insert_or_merge(
 /// is 3e-13 mm: one minimum's two refinements agree in distance even where their points
 /// may not.
 fn same_distance(x: &Contact, y: &Contact) -> bool {
-    (x.distance - y.distance).abs() <= distance_tolerance(x, y)
-}
-
-/// The sum of two contacts' distance error estimates and the rounding of their largest
-/// coordinate (at least 1 mm) (mm).
-fn distance_tolerance(x: &Contact, y: &Contact) -> f64 {
-    let coordinates = [x.point_a, x.point_b, y.point_a, y.point_b]
-        .iter()
-        .fold(1.0_f64, |m, p| m.max(p.length()));
-    distance_agreement(
-        x.diagnostics.error_estimate + y.diagnostics.error_estimate,
-        coordinates,
+    distances_agree(
+        (x.distance, x.diagnostics.error_estimate),
+        (y.distance, y.diagnostics.error_estimate),
+        [x.point_a, x.point_b, y.point_a, y.point_b],
     )
 }
 
-/// How far apart (mm) two distances of one minimum may be: the sum of their error estimates
-/// (`estimates`, mm) and the rounding of coordinates of size `coordinates` (mm).
-pub(crate) fn distance_agreement(estimates: f64, coordinates: f64) -> f64 {
+/// Whether two distances (mm) with their error estimates (mm), `(distance, estimate)`, can be
+/// one minimum's: apart by at most the sum of the estimates and the rounding of the largest of
+/// `points`' coordinates (at least 1 mm).
+pub(crate) fn distances_agree(
+    (dx, ex): (f64, f64),
+    (dy, ey): (f64, f64),
+    points: [DVec3; 4],
+) -> bool {
+    (dx - dy).abs() <= agreement(ex + ey, points)
+}
+
+/// The sum of two error estimates (`estimates`, mm) and the rounding of the largest of
+/// `points`' coordinates (at least 1 mm) (mm).
+fn agreement(estimates: f64, points: [DVec3; 4]) -> f64 {
+    let coordinates = points.iter().fold(1.0_f64, |m, p| m.max(p.length()));
     estimates + ROUNDING * coordinates
 }
 
@@ -91,7 +95,10 @@ fn same_continuous_region(x: &Contact, y: &Contact, (a, b): (&Solid, &Solid)) ->
     {
         return false;
     }
-    let tolerance = distance_tolerance(x, y);
+    let tolerance = agreement(
+        x.diagnostics.error_estimate + y.diagnostics.error_estimate,
+        [x.point_a, x.point_b, y.point_a, y.point_b],
+    );
     (x.distance - y.distance).abs() <= tolerance
         && x.normal.angle_between(y.normal) <= CONTINUOUS_NORMAL_ANGLE
         && (y.point_a - x.point_a).dot(x.normal).abs() <= tolerance

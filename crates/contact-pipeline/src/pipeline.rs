@@ -1,6 +1,6 @@
 //! The three-stage pipeline, generic over its stages.
 
-use crate::merge::{distance_agreement, insert_or_merge};
+use crate::merge::{distances_agree, insert_or_merge};
 use crate::options::{ContactOptions, OptionsError, QueryDepth};
 use crate::report::{Contact, PairReport, PairState};
 use bvh_hybrid::{BroadPhase, HybridBvh};
@@ -502,14 +502,13 @@ impl FullQueryRecord {
         }
         let tolerance = merge_tolerance(refined, scale);
         let same = self.minima.iter().any(|(m, _, _)| {
-            let coordinates = [m.point_a, m.point_b, refined.point_a, refined.point_b]
-                .iter()
-                .fold(1.0_f64, |c, p| c.max(p.length()));
-            let estimates = m.diagnostics.error_estimate + refined.diagnostics.error_estimate;
             m.point_a.distance(refined.point_a) <= tolerance
                 && m.point_b.distance(refined.point_b) <= tolerance
-                && (m.distance - refined.distance).abs()
-                    <= distance_agreement(estimates, coordinates)
+                && distances_agree(
+                    (m.distance, m.diagnostics.error_estimate),
+                    (refined.distance, refined.diagnostics.error_estimate),
+                    [m.point_a, m.point_b, refined.point_a, refined.point_b],
+                )
         });
         if !same {
             self.minima

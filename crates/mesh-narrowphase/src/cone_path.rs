@@ -360,14 +360,12 @@ fn mesh_local_minimum(
     const ZERO: f64 = 1e-12;
     side_a.prepared.rings.holding(ta, ca, ba, ZERO, rings_a);
     side_b.prepared.rings.holding(tb, cb, bb, ZERO, rings_b);
-    let corners_b: Vec<[DVec3; 3]> = rings_b
-        .iter()
-        .map(|&t| mb.triangle(t as usize).map(|p| *pose_ab * p))
-        .collect();
+    // A few triangles a side (one to a vertex's ring): B's are moved per pair, not stored.
     rings_a.iter().all(|&t| {
         let corners_a = ma.triangle(t as usize);
-        corners_b.iter().all(|corners_b| {
-            closest_between_triangles(&corners_a, corners_b).distance >= f.rank.1 - allowance
+        rings_b.iter().all(|&u| {
+            let corners_b = mb.triangle(u as usize).map(|p| *pose_ab * p);
+            closest_between_triangles(&corners_a, &corners_b).distance >= f.rank.1 - allowance
         })
     })
 }

@@ -29,13 +29,10 @@ impl TriangleRings {
         let mut next = counts;
         let mut out = vec![0_u32; offsets[vertex_count] as usize];
         for (k, t) in triangles.iter().enumerate() {
-            for &v in t {
-                if let Some(slot) = next.get_mut(v as usize) {
-                    if (v as usize) < vertex_count {
-                        out[*slot as usize] = u32::try_from(k).unwrap_or(u32::MAX);
-                        *slot += 1;
-                    }
-                }
+            for &v in t.iter().filter(|&&v| (v as usize) < vertex_count) {
+                let slot = &mut next[v as usize];
+                out[*slot as usize] = u32::try_from(k).unwrap_or(u32::MAX);
+                *slot += 1;
             }
         }
         Self {
