@@ -28,7 +28,7 @@ use crate::dense_solve::{
 };
 use crate::feature_eval::{Body, FeatureEval, Loc, LocalFacePoint, params, with_params};
 use crate::feature_switch::{
-    into_faces, onto_nearest_edge, reenter, settle, settle_start, snap_to_sides,
+    into_faces, onto_nearest_edge, TakenEntries, reenter_untaken, settle, settle_start, snap_to_sides,
     snap_within_distance,
 };
 use crate::options::NewtonOptions;
@@ -962,6 +962,7 @@ fn minimize_known(
     let mut cur = State::evaluated(a, b, la, lb, base_scale, known);
     let (max_radius, mut radius) = cur.trust_radii();
     let mut switches = 0;
+    let mut taken = [TakenEntries::default(); 2];
     let end = |state, iterations, outcome| Solution {
         state,
         iterations,
@@ -981,14 +982,16 @@ fn minimize_known(
             // From an edge or vertex, continue into an adjacent face if f decreases into it.
             let threshold = 64.0 * EPS * cur.scale;
             let entry_a = match reentry {
-                Reentry::Allowed => reenter(a, &cur.la, -cur.d, threshold),
+                Reentry::Allowed => reenter_untaken(a, &cur.la, -cur.d, threshold, &taken[0]),
                 Reentry::Never => None,
             };
             let entry_b = if entry_a.is_none() && reentry == Reentry::Allowed {
-                reenter(b, &cur.lb, cur.d, threshold)
+                reenter_untaken(b, &cur.lb, cur.d, threshold, &taken[1])
             } else {
                 None
             };
+            taken[0].record(&cur.la, &entry_a);
+            taken[1].record(&cur.lb, &entry_b);
             if entry_a.is_none() && entry_b.is_none() {
                 // A stationary point with negative curvature (a maximum or saddle of f, e.g. two
                 // seeds on the far sides) is left along that direction. Positive definite (it

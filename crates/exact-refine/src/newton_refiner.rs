@@ -124,7 +124,8 @@ impl Refiner for NewtonRefiner {
 /// answer is polished without the restriction: if it stays on the seed faces' closures and
 /// converges, it is a local minimum of the distance over both whole solids (an end on a seed
 /// face's boundary that is no minimum of the union slides off in the polish), and it is the
-/// answer. Otherwise `solution` is.
+/// answer; so is a converged polish that left the seed faces when `solution` did not converge.
+/// Otherwise `solution` is.
 fn on_seed_faces(
     a: &Body,
     b: &Body,
@@ -177,7 +178,12 @@ fn on_seed_faces(
         return solution;
     }
     let polished = solve(a, b, kept.state.la, kept.state.lb, base, options);
-    if polished.outcome != Outcome::Converged || !on_seed(&polished.state) {
+    // A converged polish that left the seed faces is still a local minimum over both solids:
+    // better than an answer that did not converge.
+    let replaces_unconverged =
+        polished.outcome == Outcome::Converged && solution.outcome != Outcome::Converged;
+    if !replaces_unconverged && (polished.outcome != Outcome::Converged || !on_seed(&polished.state))
+    {
         return solution;
     }
     let iterations = solution.iterations + kept.iterations + polished.iterations;
