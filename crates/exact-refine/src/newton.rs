@@ -28,8 +28,8 @@ use crate::dense_solve::{
 };
 use crate::feature_eval::{Body, FeatureEval, Loc, LocalFacePoint, params, with_params};
 use crate::feature_switch::{
-    into_faces, onto_nearest_edge, TakenEntries, reenter_untaken, settle, settle_start, snap_to_sides,
-    snap_within_distance,
+    TakenEntries, into_faces, onto_nearest_edge, reenter_untaken, settle, settle_start,
+    snap_to_sides, snap_within_distance,
 };
 use crate::options::NewtonOptions;
 use crate::penetration::{

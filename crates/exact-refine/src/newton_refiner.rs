@@ -182,7 +182,8 @@ fn on_seed_faces(
     // better than an answer that did not converge.
     let replaces_unconverged =
         polished.outcome == Outcome::Converged && solution.outcome != Outcome::Converged;
-    if !replaces_unconverged && (polished.outcome != Outcome::Converged || !on_seed(&polished.state))
+    if !replaces_unconverged
+        && (polished.outcome != Outcome::Converged || !on_seed(&polished.state))
     {
         return solution;
     }

@@ -25,7 +25,7 @@
 use crate::crossing_probe::overlap_near;
 use crate::dense_solve::{cholesky, cholesky_solve, lu_solve};
 use crate::feature_eval::{Body, Loc};
-use crate::feature_switch::{reenter, settle, snap_to_sides};
+use crate::feature_switch::{TakenEntries, reenter, reenter_untaken, settle, snap_to_sides};
 use crate::newton::{
     EPS, Outcome, Reentry, Solution, State, minimize, minimize_projection, take_step,
 };
@@ -105,6 +105,7 @@ pub(crate) fn solve_penetration_from(
     let mut cur = pair(start.la, start.lb, built_as, &mut steps);
     let (max_radius, mut radius) = cur.trust_radii();
     let mut switches = 0;
+    let mut taken = [TakenEntries::default(); 2];
     let end = |state, iterations, outcome| Solution {
         state,
         iterations,
@@ -147,9 +148,12 @@ pub(crate) fn solve_penetration_from(
                 cur.outward_a(inner)
             };
             let pull = inner_normal.map_or(DVec3::ZERO, |n| -n);
-            let Some(entry) = reenter(outer, &outer_loc, pull, 64.0 * EPS) else {
+            let taken_here = &mut taken[usize::from(!outer_is_a)];
+            let Some(entry) = reenter_untaken(outer, &outer_loc, pull, 64.0 * EPS, taken_here)
+            else {
                 return end(cur, steps + iteration, Outcome::Converged);
             };
+            taken_here.record(&outer_loc, &Some(entry));
             switches += 1;
             if switches > options.max_feature_switches {
                 return end(cur, steps + iteration, Outcome::SwitchLimit);

@@ -1,14 +1,19 @@
-//! Contacts lost at a vertex where faces meet with one tangent plane, found as generator
-//! failures of `soak 2000 --general --seed 9202` and `--seed 9201`: the touch's bisection ended
-//! where the pipeline's state jumped from Separated to a contact at mid-band. Both poses below
-//! were reported separated.
+//! Contacts in the band reported as separated, found as generator failures of
+//! `soak 2000 --general --seed 9202` and `--seed 9201`: the touch's bisection ended where the
+//! pipeline's state jumped from Separated to a contact at mid-band.
 //!
-//! At bowl-rounded-box 3846327417572710959 the seed was the rounded box's corner vertex. The
-//! best first-order way off it led into a flat face whose descent went straight back out over
-//! its edge to the same vertex; the solve took that way every time and stopped at its switch
-//! limit (not converged, dropped), while the way into the fillet led to the minimum. Re-entry
-//! now prefers a way not yet taken from that feature, and the seed-face retry's converged
-//! polish replaces an answer that did not converge.
+//! - A vertex where faces meet with one tangent plane (bowl-rounded-box 3846327417572710959,
+//!   pencil-bracket 10733121780553108644). At the rounded box's corner vertex the best
+//!   first-order way off it led into a flat face whose descent went straight back out over
+//!   its edge to the same vertex; the solve took that way every time and stopped at its switch
+//!   limit (not converged, dropped), while the way into the fillet led to the minimum.
+//!   Re-entry now prefers a way not yet taken from that feature, and the seed-face retry's
+//!   converged polish replaces an answer that did not converge.
+//! - A trimmed face's boundary taken from a polyline (bracket-bracket 1902993129432262258):
+//!   the nearest trim point of a (u, v) on the chord of the cap's fillet arc was the chord's
+//!   own point, so a point 2e-3 mm inside the arc passed for a point of the cap; the solve
+//!   stalled there at 0.03728 mm against the minimum 0.03731 mm on the arc. The nearest trim
+//!   point is now always on the exact p-curve.
 //!
 //! Truth: the oracle's minimum (independent dense sampling, polished) at the same pose, and
 //! the connecting vector along the contact normal.
@@ -28,10 +33,21 @@ fn agrees_with_oracle(a: &str, b: &str, t: [f64; 3], q: [f64; 4]) {
     };
     let (oa, ob) = (&objects[a], &objects[b]);
     let report = pipeline
-        .query(oa, &DPose3::IDENTITY, ob, &pose_b, &mut QueryScratch::default())
+        .query(
+            oa,
+            &DPose3::IDENTITY,
+            ob,
+            &pose_b,
+            &mut QueryScratch::default(),
+        )
         .expect("unit quaternion");
-    let oracle = oracle_report(&oa.model.solid, &ob.model.solid, &pose_b, pipeline.options())
-        .expect("oracle runs");
+    let oracle = oracle_report(
+        &oa.model.solid,
+        &ob.model.solid,
+        &pose_b,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
     let truth = oracle
         .contacts
         .iter()
@@ -50,7 +66,10 @@ fn agrees_with_oracle(a: &str, b: &str, t: [f64; 3], q: [f64; 4]) {
         nearest.distance,
         truth.distance
     );
-    assert!(nearest.point_a.distance(truth.point_a) <= 1e-5, "{nearest:?} {truth:?}");
+    assert!(
+        nearest.point_a.distance(truth.point_a) <= 1e-5,
+        "{nearest:?} {truth:?}"
+    );
     let along = (nearest.point_b - nearest.point_a).normalize();
     assert!(along.angle_between(nearest.normal) <= 1e-6, "{nearest:?}");
 }
@@ -81,6 +100,25 @@ fn a_pencil_against_the_bracket() {
             0.9901572924562942,
             0.038893040609348985,
             0.12888279064003214,
+        ],
+    );
+}
+
+#[test]
+fn two_brackets_edge_to_fillet_arc() {
+    // The generator's touched pose, 1e-9 mm back along its line of approach.
+    let approach = DVec3::new(-0.6886403130206544, 0.5809489209546477, 0.4339042181454862);
+    let t =
+        DVec3::new(-19.08147745328165, -12.66343315549642, -0.7487017136830119) - approach * 1e-9;
+    agrees_with_oracle(
+        "bracket",
+        "bracket",
+        t.to_array(),
+        [
+            0.3569634320257414,
+            0.7044537011908971,
+            -0.2672846480910013,
+            0.5521603100275496,
         ],
     );
 }

@@ -1,0 +1,199 @@
+//! Penetration claims that were wrong both ways, found as generator failures of
+//! `soak 10000 --seed 9102` and `soak 2000 --general --seed 9202` (the touch's bisection ended
+//! where the pipeline's state jumped over the band):
+//!
+//! - vase-bracket 5445097807480181339: a bracket corner 0.51 mm inside the vase was reported
+//!   separated. The penetration solve cycled between the bracket's corner vertex and its faces
+//!   to its switch limit, and the polish that followed ended on the surfaces' crossing
+//!   (d = 0, no minimum). Re-entry now prefers a way off a vertex not yet taken.
+//! - goblet-pencil 13642981489842291113 (FIXME, still wrong): a pencil near a goblet's rim,
+//!   0.2 mm or more away, is reported penetrating 10.95 mm: an edge-edge pair measured through
+//!   both solids. The witness check traces only from points on faces (an edge's own faces
+//!   graze the segment next to it), so a pair of two edges passes unchecked. Dropping
+//!   witnesses deeper than the meshes' error where Stage 2 saw no intersecting meshes was tried
+//!   and is unsound: Stage 2's normal-cone path returns seeds, not a penetrating verdict, for a
+//!   0.55 mm vase-vase penetration it did not need to test triangle by triangle.
+//!
+//! Truth, independent of the stages: whether a point is inside a solid by the parity of a
+//! ray's crossings with its closed tessellation (decisive for points farther from the
+//! surface than the meshes' chordal error), and the oracle.
+
+use contact_pipeline::{ContactOptions, ContactPipeline, PairState, QueryScratch};
+use geom_param::{DPose3, DQuat, DVec3, FeatureLocation, ObjectModel};
+use xtask::soak::oracle_check::oracle_report;
+use xtask::soak::run::prepare_objects;
+
+/// Whether `p` (the model's frame) is inside the closed tessellation of `model`: the majority
+/// of three rays' crossing parities with every triangle (Möller-Trumbore), along directions
+/// no axis or face of the fixtures is aligned with (a ray through a mesh edge or vertex can
+/// count one crossing twice).
+fn inside_mesh(model: &ObjectModel, p: DVec3) -> bool {
+    let directions = [
+        DVec3::new(0.5773, 0.6139, 0.5385),
+        DVec3::new(-0.3119, 0.8213, -0.4777),
+        DVec3::new(0.6829, -0.1234, -0.7202),
+    ];
+    let votes = directions
+        .iter()
+        .filter(|d| ray_parity(model, p, d.normalize()))
+        .count();
+    votes >= 2
+}
+
+/// Whether the ray from `p` along `dir` crosses the model's triangles an odd number of times.
+fn ray_parity(model: &ObjectModel, p: DVec3, dir: DVec3) -> bool {
+    let mut crossings = 0;
+    for mesh in &model.meshes {
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            let (e1, e2) = (b - a, c - a);
+            let h = dir.cross(e2);
+            let det = e1.dot(h);
+            if det.abs() < 1e-14 {
+                continue;
+            }
+            let s = p - a;
+            let u = s.dot(h) / det;
+            let q = s.cross(e1);
+            let v = dir.dot(q) / det;
+            if u < 0.0 || v < 0.0 || u + v > 1.0 {
+                continue;
+            }
+            if e2.dot(q) / det > 0.0 {
+                crossings += 1;
+            }
+        }
+    }
+    crossings % 2 == 1
+}
+
+fn pose(t: [f64; 3], q: [f64; 4]) -> DPose3 {
+    DPose3 {
+        translation: DVec3::from_array(t),
+        rotation: DQuat::from_array(q),
+    }
+}
+
+#[test]
+fn a_bracket_corner_inside_the_vase_is_a_penetration() {
+    let pipeline = ContactPipeline::new(ContactOptions::default()).expect("default options");
+    let objects = prepare_objects(&pipeline).expect("fixture objects build");
+    let (vase, bracket) = (&objects["vase"], &objects["bracket"]);
+    // The generator's touched pose moved 0.01 mm back along its line of approach.
+    let touched = pose(
+        [-2.0110853144985184, 50.79799566475438, 73.08386243211953],
+        [
+            -0.6694823330914138,
+            0.4608751127779044,
+            -0.3750314494635806,
+            -0.4458014670384984,
+        ],
+    );
+    let approach = DVec3::new(0.08781783656467584, -0.2916161585463662, -0.952495692198007);
+    let pose_b = DPose3 {
+        translation: touched.translation - approach * 0.01,
+        ..touched
+    };
+    let report = pipeline
+        .query(
+            vase,
+            &DPose3::IDENTITY,
+            bracket,
+            &pose_b,
+            &mut QueryScratch::default(),
+        )
+        .expect("unit quaternion");
+    assert_eq!(report.state, PairState::Penetration, "{report:?}");
+    let deepest = report
+        .contacts
+        .iter()
+        .min_by(|x, y| x.distance.total_cmp(&y.distance))
+        .expect("a penetration contact");
+    // Each point is inside the other solid (the witness spans the lens), by far more than the
+    // meshes' error.
+    let error = vase
+        .model
+        .meshes
+        .iter()
+        .map(|m| m.chordal_error)
+        .fold(0.0, f64::max);
+    assert!(deepest.distance < -10.0 * error, "{deepest:?}");
+    assert!(inside_mesh(&vase.model, deepest.point_b), "{deepest:?}");
+    assert!(
+        inside_mesh(&bracket.model, pose_b.inverse() * deepest.point_a),
+        "{deepest:?}"
+    );
+    assert!(
+        (deepest.point_a.distance(deepest.point_b) + deepest.distance).abs() <= 1e-9,
+        "{deepest:?}"
+    );
+}
+
+#[test]
+fn a_pencil_by_the_goblet_rim_is_taken_for_10_mm_deep() {
+    let pipeline = ContactPipeline::new(ContactOptions::default()).expect("default options");
+    let objects = prepare_objects(&pipeline).expect("fixture objects build");
+    let (goblet, pencil) = (&objects["goblet"], &objects["pencil"]);
+    let touched = pose(
+        [2.38575511971254, 15.796616161241587, 153.01213495786146],
+        [
+            -0.5232096120517146,
+            0.20718271205449357,
+            -0.018866324781560476,
+            0.8264206480187171,
+        ],
+    );
+    let approach = DVec3::new(
+        0.02694253032059672,
+        -0.5883638100027788,
+        -0.8081473424685239,
+    );
+    let pose_b = DPose3 {
+        translation: touched.translation + approach * 1e-9,
+        ..touched
+    };
+    let report = pipeline
+        .query(
+            goblet,
+            &DPose3::IDENTITY,
+            pencil,
+            &pose_b,
+            &mut QueryScratch::default(),
+        )
+        .expect("unit quaternion");
+    // No vertex of either mesh is inside the other object's mesh: nothing penetrates by more
+    // than the meshes' error.
+    let b_in_a = pencil
+        .model
+        .meshes
+        .iter()
+        .flat_map(|m| &m.positions)
+        .any(|p| inside_mesh(&goblet.model, pose_b * *p));
+    let a_in_b = goblet
+        .model
+        .meshes
+        .iter()
+        .flat_map(|m| &m.positions)
+        .any(|p| inside_mesh(&pencil.model, pose_b.inverse() * *p));
+    assert!(!b_in_a && !a_in_b);
+    let oracle = oracle_report(
+        &goblet.model.solid,
+        &pencil.model.solid,
+        &pose_b,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
+    assert!(
+        oracle.min_distance > 2.0 * pipeline.options().delta2,
+        "{oracle:?}"
+    );
+    // FIXME: the truth is Separated. Today's answer is the edge-edge pair through the
+    // material, both points on edges.
+    assert_eq!(report.state, PairState::Penetration, "{report:?}");
+    let witness = &report.contacts[0];
+    assert!((witness.distance + 10.952).abs() < 1e-3, "{witness:?}");
+    assert!(matches!(
+        (witness.location_a, witness.location_b),
+        (FeatureLocation::Edge { .. }, FeatureLocation::Edge { .. })
+    ));
+}
