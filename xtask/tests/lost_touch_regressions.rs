@@ -14,6 +14,12 @@
 //!   own point, so a point 2e-3 mm inside the arc passed for a point of the cap; the solve
 //!   stalled there at 0.03728 mm against the minimum 0.03731 mm on the arc. The nearest trim
 //!   point is now always on the exact p-curve.
+//! - A planar face's chordal error without its rim (loft-bracket 10941492566190232716 of
+//!   `soak 2000 --general --seed 10201`): the loft's elliptic bottom cap stated a chordal
+//!   error of 0 (its triangles lie on its plane) while its rim stands off the boundary chords
+//!   by up to 0.016 mm, and GJK certified its hull farther than the band plus the errors from
+//!   a bracket 0.0989 mm away. A face's chordal error now includes its boundary edges' chord
+//!   deviation.
 //!
 //! Truth: the oracle's minimum (independent dense sampling, polished) at the same pose, and
 //! the connecting vector along the contact normal.
@@ -119,6 +125,21 @@ fn two_brackets_edge_to_fillet_arc() {
             0.7044537011908971,
             -0.2672846480910013,
             0.5521603100275496,
+        ],
+    );
+}
+
+#[test]
+fn a_loft_rim_near_the_band_edge_against_the_bracket() {
+    agrees_with_oracle(
+        "loft",
+        "bracket",
+        [2.9172466964050656, 1.767954491147245, -12.094411068559324],
+        [
+            0.040432800108789226,
+            -0.4033102216266032,
+            0.9053751938722949,
+            0.12649826926708277,
         ],
     );
 }

@@ -81,6 +81,14 @@ pub(crate) fn tessellate_solid(
         })
         .collect::<Result<Vec<EdgeSamples>, ModelError>>()?;
 
+    let mut rims = vec![0.0_f64; solid.faces.len()];
+    for (e, samples) in edges.iter().enumerate() {
+        let deviation = chord_deviation(solid, EdgeId(e as u32), samples, &table);
+        for u in &solid.edge(EdgeId(e as u32)).uses {
+            let rim = &mut rims[u.face.0 as usize];
+            *rim = rim.max(deviation);
+        }
+    }
     let mut faces = Vec::with_capacity(solid.faces.len());
     for (f, metric) in metrics.iter().enumerate() {
         let face = FaceId(f as u32);
@@ -100,8 +108,11 @@ pub(crate) fn tessellate_solid(
             budget,
             tolerance,
         };
-        let mesh =
+        let mut mesh =
             triangulate_face(&input, &loops, &mut table).map_err(|reason| fail(face, reason))?;
+        // The exact face reaches its boundary curves, which stand off the mesh's boundary
+        // chords by up to their deviation.
+        mesh.chordal_error = mesh.chordal_error.max(rims[f]);
         faces.push(mesh);
     }
 
@@ -112,6 +123,23 @@ pub(crate) fn tessellate_solid(
         normals,
         faces,
     })
+}
+
+/// The largest distance (mm) between edge `id`'s curve and the chords of its samples,
+/// measured at the quarter points of every piece (where the sampler measured it too): how far
+/// the exact boundary of a face along the edge stands off its mesh's boundary. A planar face's
+/// triangles lie on its plane, so this is all of its chordal error (a loft's elliptic cap).
+fn chord_deviation(solid: &Solid, id: EdgeId, samples: &EdgeSamples, table: &VertexTable) -> f64 {
+    let curve = &solid.edge(id).curve;
+    let mut deviation: f64 = 0.0;
+    for (t, v) in samples.ts.windows(2).zip(samples.ids.windows(2)) {
+        let (pa, pb) = (table.get(v[0]).position, table.get(v[1]).position);
+        for s in [0.25, 0.5, 0.75] {
+            let exact = curve.eval(t[0] + s * (t[1] - t[0])).point;
+            deviation = deviation.max(exact.distance(pa.lerp(pb, s)));
+        }
+    }
+    deviation
 }
 
 fn fail(face: FaceId, reason: String) -> ModelError {
