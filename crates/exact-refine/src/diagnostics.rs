@@ -111,7 +111,10 @@ pub(crate) fn diagnose(
     } else {
         None
     };
-    let is_local_minimum = converged && touch.unwrap_or(second_order);
+    // A pair whose points lie on different sides ([`State::sides_disagree`]) has one point
+    // inside the other solid and the other outside: neither a contact nor a depth.
+    let is_local_minimum =
+        converged && touch.unwrap_or_else(|| second_order && !state.sides_disagree(a, b));
     RefineDiagnostics {
         iterations: solution.iterations,
         gradient_norm: state.gradient_norm(),

@@ -449,17 +449,26 @@ pub(crate) fn reenter_untaken(
                 let domain = surface.domain();
                 let across = usize::from(matches!(side, ParamSide::VMin | ParamSide::VMax));
                 let range = domain[1 - across];
-                for k in 0..VERTEX_EXIT_SAMPLES {
-                    let t =
-                        range.min + range.span() * f64::from(k) / f64::from(VERTEX_EXIT_SAMPLES);
+                let samples = VERTEX_EXIT_SAMPLES as usize;
+                let at = |k: usize| range.min + range.span() * k as f64 / samples as f64;
+                let tangent_at = |t: f64| {
                     let [u, v] = side_params(&domain, side, t);
-                    let tangent = inward_tangent(surface.eval(u, v), side);
-                    let mut uv = [u, v];
+                    inward_tangent(surface.eval(u, v), side)
+                };
+                let tangents: [DVec3; VERTEX_EXIT_SAMPLES as usize] =
+                    std::array::from_fn(|k| tangent_at(at(k)));
+                for (k, &tangent) in tangents.iter().enumerate() {
+                    let t = at(k);
+                    let mut uv = side_params(&domain, side, t);
                     // Off a smooth pole only, where the meridian half a turn round leaves in the
                     // opposite direction (a tangent plane); an apex (a cone's tip) is a vertex
-                    // of the solid, and its re-entry starts on it as before.
-                    let [ou, ov] = side_params(&domain, side, t + 0.5 * range.span());
-                    let opposite = inward_tangent(surface.eval(ou, ov), side);
+                    // of the solid, and its re-entry starts on it as before. Round a periodic
+                    // side that meridian is the sample half the samples on.
+                    let opposite = if range.periodic {
+                        tangents[(k + samples / 2) % samples]
+                    } else {
+                        tangent_at(t + 0.5 * range.span())
+                    };
                     let smooth = (tangent.normalize_or_zero() + opposite.normalize_or_zero())
                         .length()
                         <= 1e-6;

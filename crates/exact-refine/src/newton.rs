@@ -169,6 +169,27 @@ impl State {
         64.0 * EPS * (largest + self.scale * self.curvature)
     }
 
+    /// Whether the two points lie on different sides: one in front of the other's outward
+    /// direction and the other behind it, each by more than half the gap (so that neither
+    /// test is a direction grazing a normal cone's edge), with both directions known and the
+    /// points farther apart than rounding. Such a pair is neither a contact (both in front)
+    /// nor a penetration witness (both behind): P_a inside B, say, while P_b is outside A, as
+    /// a pole of A inside a rod B against the rod's far side, both normals pointing the same
+    /// way. It can still be a critical pair, even a local minimum of |d|.
+    pub(crate) fn sides_disagree(&self, a: &Body, b: &Body) -> bool {
+        let gap = -self.d; // P_b − P_a
+        let length = gap.length();
+        if length <= 1e3 * EPS * self.scale {
+            return false;
+        }
+        let (Some(na), Some(nb)) = (self.outward_a(a), self.outward_b(b)) else {
+            return false;
+        };
+        // > 0: P_b in front of A; > 0: P_a in front of B.
+        let (front_a, front_b) = (gap.dot(na), -gap.dot(nb));
+        front_a * front_b < 0.0 && front_a.abs() > 0.5 * length && front_b.abs() > 0.5 * length
+    }
+
     /// +1 when separated (or touching), −1 when penetrating: P_b lies behind A's outward
     /// direction at P_a and P_a behind B's at P_b (both tests where both directions exist; far
     /// from the answer one of them alone is not a reliable witness of penetration). Points
