@@ -14,6 +14,17 @@
 //!   and is unsound: Stage 2's normal-cone path returns seeds, not a penetrating verdict, for a
 //!   0.55 mm vase-vase penetration it did not need to test triangle by triangle.
 //!
+//! - paperweight-pencil (the coherence tests' fast trajectories, the pencil pushed 3.5 mm
+//!   into the paperweight's dome): answered separated or as a 3.465 mm "depth", depending on
+//!   the last bits of the pose. Stage 3's one seed went to the pair from the dome's pole
+//!   (inside the pencil) to the pencil's far side (outside the dome): a local minimum of |d|
+//!   with both outward normals pointing the same way, one point inside the other solid and
+//!   one outside, so neither a contact nor a depth. On the dome's face it was judged a
+//!   non-minimum above the band and dropped, and the pair came out separated although its
+//!   meshes intersect; on the pole's vertex it was reported as a depth. Such a pair is now
+//!   never a minimum, and intersecting meshes whose chordal errors sum to at most delta2
+//!   prove the pair is not separated, so with no contact found it is penetrating.
+//!
 //! Truth, independent of the stages: whether a point is inside a solid by the parity of a
 //! ray's crossings with its closed tessellation (decisive for points farther from the
 //! surface than the meshes' chordal error), and the oracle.
@@ -196,4 +207,53 @@ fn a_pencil_by_the_goblet_rim_is_taken_for_10_mm_deep() {
         (witness.location_a, witness.location_b),
         (FeatureLocation::Edge { .. }, FeatureLocation::Edge { .. })
     ));
+}
+
+#[test]
+fn a_pencil_pressed_into_the_paperweight_dome_is_a_penetration() {
+    let pipeline = ContactPipeline::new(ContactOptions::default()).expect("default options");
+    let objects = prepare_objects(&pipeline).expect("fixture objects build");
+    let (paperweight, pencil) = (&objects["paperweight"], &objects["pencil"]);
+    // The dome's pole, on the paperweight's axis (its profile's last arc ends there).
+    let pole = DVec3::new(0.0, 0.0, 54.1245154965971);
+    // Two poses 2e-16 mm apart that used to get the two different wrong answers.
+    for y in [-4.0281981562277135e-15, -4.202923375831177e-15] {
+        let pose_b = pose(
+            [-60.0, y, 54.08951549667865],
+            [0.0, 0.7071067811865475, 0.0, 0.7071067811865476],
+        );
+        // The pole is inside the pencil, 3.4 mm or more from every vertex of its mesh.
+        let pole_in_b = pose_b.inverse() * pole;
+        assert!(inside_mesh(&pencil.model, pole_in_b));
+        let nearest_vertex = pencil
+            .model
+            .meshes
+            .iter()
+            .flat_map(|m| &m.positions)
+            .map(|p| p.distance(pole_in_b))
+            .fold(f64::INFINITY, f64::min);
+        assert!(nearest_vertex > 3.4, "{nearest_vertex}");
+        let report = pipeline
+            .query(
+                paperweight,
+                &DPose3::IDENTITY,
+                pencil,
+                &pose_b,
+                &mut QueryScratch::default(),
+            )
+            .expect("unit quaternion");
+        assert_eq!(report.state, PairState::Penetration, "y {y}: {report:?}");
+        // A depth, if any, is a pair of points each inside the other solid.
+        for depth in &report.contacts {
+            assert!(depth.distance < 0.0, "y {y}: {depth:?}");
+            assert!(
+                inside_mesh(&paperweight.model, depth.point_b),
+                "y {y}: {depth:?}"
+            );
+            assert!(
+                inside_mesh(&pencil.model, pose_b.inverse() * depth.point_a),
+                "y {y}: {depth:?}"
+            );
+        }
+    }
 }

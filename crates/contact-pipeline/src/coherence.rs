@@ -207,6 +207,8 @@ pub struct PairCache {
     ids: Vec<ContactId>,
     next_id: u64,
     kind: Option<FrameKind>,
+    /// Whether the last report was a penetration (the next full query then runs unrecorded).
+    penetrating: bool,
     record: FullQueryRecord,
     /// Buffer of a warm frame's refinements (tracked index, result).
     refined_now: Vec<(usize, RefinedContact)>,
@@ -293,6 +295,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             cache.invalidate();
             cache.last.clear();
             cache.ids.clear();
+            cache.penetrating = false;
         }
         // The last frame's contacts, for a full query's ids; the buffer is refilled below.
         let mut last = std::mem::take(&mut cache.last);
@@ -338,6 +341,12 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
 
     /// The full query with the widened band; sets up the tracked minima when the answer allows
     /// warm frames (no penetration, every minimum isolated).
+    ///
+    /// A penetrating pair is answered by the plain query: its witnesses and depths come from
+    /// the seeds of Stage 2's mesh overlaps, which the widened band changes (it adds seeds, and
+    /// so may add regions), and the report must be the cold query's. So a full query right
+    /// after a penetration runs unrecorded (nothing is tracked while the pair penetrates), and
+    /// a recorded one that comes out penetrating is run again unrecorded.
     #[allow(clippy::too_many_arguments)]
     fn full(
         &self,
@@ -354,13 +363,20 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         let options = self.options();
         cache.invalidate();
         cache.warm_frames = 0;
-        if options.depth != QueryDepth::Contacts {
-            return self.query_into(a, pose_a, b, pose_b, scratch, report);
+        if options.depth != QueryDepth::Contacts || cache.penetrating {
+            let result = self.query_into(a, pose_a, b, pose_b, scratch, report);
+            cache.penetrating = report.state == PairState::Penetration;
+            return result;
         }
         let slack = fraction * (options.margin - options.delta2);
         let mut record = std::mem::take(&mut cache.record);
         record.slack = slack;
-        let result = self.query_recorded(a, pose_a, b, pose_b, scratch, report, Some(&mut record));
+        let mut result =
+            self.query_recorded(a, pose_a, b, pose_b, scratch, report, Some(&mut record));
+        if result.is_ok() && report.state == PairState::Penetration {
+            result = self.query_into(a, pose_a, b, pose_b, scratch, report);
+        }
+        cache.penetrating = report.state == PairState::Penetration;
         let trackable = result.is_ok()
             && report.state != PairState::Penetration
             && record.minima.iter().all(|(m, _, _)| isolated(m));

@@ -245,6 +245,10 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         scratch.probes.clear();
         let mut penetrating = false;
         let mut mesh_overlaps = 0;
+        // Some pair's meshes intersect and their chordal errors sum to at most delta2: the
+        // exact surfaces come within delta2 of each other there (each mesh lies within its
+        // error of its surface), so the pair is not separated.
+        let mut overlap_within_band = false;
         for &(ca, cb) in &scratch.pairs {
             let verdict = self.mesh.query(
                 ComponentRef {
@@ -278,6 +282,9 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                         penetrating = true;
                     } else {
                         mesh_overlaps += 1;
+                        overlap_within_band |= a.model.meshes[ca.0 as usize].chordal_error
+                            + b.model.meshes[cb.0 as usize].chordal_error
+                            <= options.delta2;
                         take_seeds(&scratch.mesh_out, &mut scratch.seeds, &mut scratch.probes);
                     }
                 }
@@ -353,13 +360,15 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
         if report.state != PairState::Penetration
             && report.contacts.is_empty()
             && mesh_overlaps > 0
-            && (unconverged_below || report.stats.through_material > 0)
+            && (unconverged_below || report.stats.through_material > 0 || overlap_within_band)
         {
             // The meshes intersect and no seed gave an answer, but one ended on overlapping
             // surfaces, unconverged or with a witness the check could not certify (a thin
             // wall, such as a goblet's rim, poking into the other solid passes within the
-            // meshes' error of its own far side): the pair is taken as penetrating. Neither
-            // kind decides anything where another seed found a contact.
+            // meshes' error of its own far side), or the intersecting meshes' errors are
+            // within the band, so that the surfaces are not separated and no contact in the
+            // band was found: the pair is taken as penetrating. None of these decides anything
+            // where another seed found a contact.
             report.state = PairState::Penetration;
         }
         if report.state != PairState::Penetration {
