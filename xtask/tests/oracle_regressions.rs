@@ -268,3 +268,67 @@ fn a_dome_pole_under_a_tilted_plane_is_no_minimum() {
         "{deepest:?} vs {witness}"
     );
 }
+
+/// `soak 2000 --general --seed 11202`, tube-rounded-box 3406525604992263719: the tube's outer
+/// cylinder touches a fillet of the box (6.3e-10 mm), and the oracle also listed a "minimum"
+/// at 0.0435 mm on the box's corner, at the pole of a corner sphere face where the sphere, two
+/// fillets and a flat face meet with one tangent plane. The polish saw that no meridian of the
+/// sphere descends from the pole and held the point there as at a bound; descent into the
+/// other faces at that vertex was never tried. Such a point is now held at the vertex and
+/// leaves into whichever face or edge descends. Independent check: the rounded box is smooth
+/// there (its outward normal is the sphere's, the box's bottom face normal), and the vector
+/// from the tube's axis to the pole is 5° off that normal, so the pole is not even a critical
+/// point of the distance to the tube's cylinder; the touch is the only minimum the oracle and
+/// the pipeline report.
+#[test]
+fn a_rounded_box_corner_pole_is_no_minimum() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [34.857500443402216, -7.734246901074414, 22.301440358825865],
+        [
+            0.022822751415203336,
+            0.7043019219990795,
+            0.4875409887323137,
+            0.5155014151213946,
+        ],
+    );
+    let (tube, rounded_box) = (&objects["tube"], &objects["rounded-box"]);
+    // The box's corner sphere (half extents 30 x 20 x 12, radius 4): centre (26, 16, -8) in
+    // its frame, pole on the bottom face z = -12, where the outward normal is -z.
+    let centre = pose_b * DVec3::new(26.0, 16.0, -8.0);
+    let normal = pose_b.rotation * DVec3::NEG_Z;
+    let pole = centre + 4.0 * normal;
+    // From the tube's axis (A's z axis) to the pole: the direction a critical pair with the
+    // tube's outer cylinder (radius 9) would need along the box's normal.
+    let radial = DVec3::new(pole.x, pole.y, 0.0);
+    assert!((radial.length() - 9.0 - 0.0435).abs() < 1e-3, "{pole}");
+    let off_normal = (-radial.normalize()).angle_between(normal);
+    assert!(off_normal > 0.08, "{off_normal} rad");
+
+    let oracle = oracle_report(
+        &tube.model.solid,
+        &rounded_box.model.solid,
+        &pose_b,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
+    for c in &oracle.contacts {
+        assert!(c.point_b.distance(pole) > 1e-3, "the pole is listed: {c:?}");
+    }
+    assert_eq!(oracle.contacts.len(), 1, "{oracle:?}");
+    let report = pipeline
+        .query(
+            tube,
+            &DPose3::IDENTITY,
+            rounded_box,
+            &pose_b,
+            &mut QueryScratch::default(),
+        )
+        .expect("unit quaternion");
+    assert_eq!(report.state, PairState::Contact, "{report:?}");
+    assert_eq!(report.contacts.len(), 1, "{report:?}");
+    assert!(
+        (report.contacts[0].distance - oracle.contacts[0].distance).abs() < 1e-9,
+        "{report:?} vs {oracle:?}"
+    );
+}

@@ -291,6 +291,19 @@ fn directional(e: &Eval, k: usize, w: DVec3) -> f64 {
     if k < 2 { e.r.dot(w) } else { -e.r.dot(w) }
 }
 
+/// Whether an edge ending at `vertex` has a use on a face other than `face`: the vertex is a
+/// corner where faces meet, not only the pole or apex of `face` (whose seam ends there).
+fn meets_other_faces(solid: &PosedSolid, face: FaceId, vertex: geom_param::VertexId) -> bool {
+    solid.edges_leaving(vertex).iter().any(|&(edge, _, _)| {
+        solid
+            .solid
+            .edge(edge)
+            .uses
+            .iter()
+            .any(|use_| use_.face != face)
+    })
+}
+
 /// At a pole or apex (the side collapses to a vertex): the running parameter value with the
 /// steepest descent into the face, if there is descent at all.
 fn turn_at_vertex(
@@ -453,7 +466,7 @@ pub(crate) fn minimise(
             } else {
                 b.boundary(p.fb, side)
             };
-            if let Boundary::Vertex(_) = boundary {
+            if let Boundary::Vertex(vertex) = boundary {
                 // At a pole or apex only one meridian is seen at a time: when it offers no
                 // descent into the face, look round for one that does.
                 if slope < -0.1 * limits.tolerance {
@@ -464,6 +477,19 @@ pub(crate) fn minimise(
                     .flatten();
                 if let Some(q) = turned {
                     p = q;
+                    moves += 1;
+                    moved = true;
+                    break;
+                }
+                // No meridian of this face descends. Where other faces meet at the vertex (a
+                // rounded box's corner, where a sphere's pole meets the fillets and the flat
+                // face), descent may still lead into one of them: the point is that vertex,
+                // held there, and leaves into whichever edge or face descends (or stays, a
+                // minimum only if nothing does). Treated as a bound, such a pole passed for a
+                // minimum with the connecting vector 5° off the surface's normal.
+                let (solid, face, uv) = if on_a { (a, p.fa, p.a) } else { (b, p.fb, p.b) };
+                if moves < MAX_MOVES && meets_other_faces(solid, face, vertex) {
+                    p.set_side(on_a, face, uv, Held::Vertex(vertex));
                     moves += 1;
                     moved = true;
                     break;
