@@ -16,7 +16,8 @@
 
 use crate::normal_cone::{NormalBand, NormalCone};
 use geom_param::{
-    ComponentMesh, EdgeConvexity, EdgeId, FaceId, FeatureLocation, Solid, SurfacePoint,
+    ComponentMesh, EdgeConvexity, EdgeId, FaceConvexity, FaceId, FeatureLocation, Solid,
+    SurfacePoint,
 };
 use glam::{DMat2, DMat3, DVec2, DVec3};
 
@@ -478,8 +479,39 @@ fn piece_item(
     let [du, dv] = surface.domain();
     let mut face_normals: [DVec3; 3] = [DVec3::ZERO; 3];
     let mut face_count = 0;
-    let mut extra: [DVec3; 3] = [DVec3::ZERO; 3];
-    let mut extra_count = 0;
+    // Normals at the corners on edges or vertices of the solid, beyond the face's own.
+    let mut extra: Vec<DVec3> = Vec::new();
+    // On a concave face, the normals of the faces across a convex edge at its parameter `t`
+    // where those are convex or flat: the whole arc of the edge's normals then lies in the
+    // piece's cone, not only the half on this face's side of the mean. The face across is in
+    // a convex component, which the convex path answers with its single global minimum (GJK),
+    // so a minimum on the edge with its connecting vector on that side has to be found from
+    // this side (a pencil against a goblet's cup at the lip and at the crease where the cup
+    // meets the stem: the crease's minimum was missed).
+    let own_concave = face_data.convexity == FaceConvexity::Concave;
+    let edge_face_normals = |id: EdgeId, t: f64, into: &mut Vec<DVec3>| {
+        let Some(edge) = solid.edges.get(id.0 as usize) else {
+            return;
+        };
+        if !own_concave || edge.convexity == EdgeConvexity::Concave {
+            return;
+        }
+        for use_ in &edge.uses {
+            let Some(across) = solid.faces.get(use_.face.0 as usize) else {
+                continue;
+            };
+            if use_.face == *face || across.convexity == FaceConvexity::Concave {
+                continue;
+            }
+            let [u, v] = solid.use_params(use_, t);
+            let [ru, rv] = across.surface.domain();
+            if let Some(n) = across.surface.normal(ru.normalize(u), rv.normalize(v)) {
+                if n.is_finite() {
+                    into.push(n);
+                }
+            }
+        }
+    };
     let mut tensors = [CurvatureTensor::ZERO; 3];
     let mut smooth = true;
     let mut apex_corners: [Option<u32>; 3] = [None; 3];
@@ -526,16 +558,32 @@ fn piece_item(
             CornerFeature::Vertex(vertex) => match mesh.vertex_locations.get(vertex as usize) {
                 Some(FeatureLocation::Edge { id, t }) => {
                     if let Some(&n) = mesh.normals.get(vertex as usize) {
-                        extra[extra_count] = n;
-                        extra_count += 1;
+                        extra.push(n);
                     }
+                    edge_face_normals(*id, *t, &mut extra);
                     tangents.add_at(solid, *id, *t);
                     smooth &= !edge_is_concave(*id);
                 }
-                Some(FeatureLocation::Vertex { .. }) => {
+                Some(FeatureLocation::Vertex { id }) => {
                     if let Some(&n) = mesh.normals.get(vertex as usize) {
-                        extra[extra_count] = n;
-                        extra_count += 1;
+                        extra.push(n);
+                    }
+                    // A corner of the solid: the faces across each edge that ends here.
+                    for &e in solid
+                        .vertices
+                        .get(id.0 as usize)
+                        .map_or(&[][..], |v| &v.edges)
+                    {
+                        let Some(edge) = solid.edges.get(e.0 as usize) else {
+                            continue;
+                        };
+                        let range = edge.curve.domain();
+                        for (end, t) in edge.ends.into_iter().flatten().zip([range.min, range.max])
+                        {
+                            if end == *id {
+                                edge_face_normals(e, t, &mut extra);
+                            }
+                        }
                     }
                     tangents.unknown = true;
                 }
@@ -550,8 +598,16 @@ fn piece_item(
                     (mesh.normals.get(i as usize), mesh.normals.get(j as usize))
                 {
                     if let Some(n) = (ni * weight(i) + nj * weight(j)).try_normalize() {
-                        extra[extra_count] = n;
-                        extra_count += 1;
+                        extra.push(n);
+                    }
+                }
+                for end in [i, j] {
+                    if let Some(FeatureLocation::Edge { id, t }) =
+                        mesh.vertex_locations.get(end as usize)
+                    {
+                        if *id == edge {
+                            edge_face_normals(edge, *t, &mut extra);
+                        }
                     }
                 }
                 smooth &= !edge_is_concave(edge);
@@ -569,7 +625,7 @@ fn piece_item(
         }
     }
     // The face's normals inside the piece too: at its edge midpoints and centroid.
-    let mut all = [DVec3::ZERO; 10];
+    let mut all = [DVec3::ZERO; 7];
     all[..face_count].copy_from_slice(face_normals);
     let mut count = face_count;
     let inside = [
@@ -607,14 +663,14 @@ fn piece_item(
         NormalBand::ALL
     } else if tangents.count > 0 {
         crease_band(sampled, spread, tangents.list())
-    } else if extra_count == 0 {
+    } else if extra.is_empty() {
         piece_band(sampled, spread)
     } else {
         NormalBand::ALL
     };
-    all[count..count + extra_count].copy_from_slice(&extra[..extra_count]);
-    let cone = NormalCone::bounding(&all[..count + extra_count])
-        .widened(INTERIOR_SPREAD * spread + NORMAL_FLOOR);
+    let mut normals = sampled.to_vec();
+    normals.extend_from_slice(&extra);
+    let cone = NormalCone::bounding(&normals).widened(INTERIOR_SPREAD * spread + NORMAL_FLOOR);
     Item {
         corners: piece.corners,
         count: 3,

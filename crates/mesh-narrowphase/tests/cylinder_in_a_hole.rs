@@ -9,7 +9,10 @@
 //! minima; now the wall's pairs are pruned. Along each rim the distance is a valley flatter than
 //! the meshes' error, and a leaf pair's candidate is superseded by a neighbour's only where that
 //! is certainly lower (by more than both mesh distances' error bounds: a looser rule lost a
-//! deeper minimum beside a shallower one), so the valleys keep 5 seeds for the two minima.
+//! deeper minimum beside a shallower one), so the valleys kept 5 seeds for the two minima.
+//! Since the bore's pieces on the rims hold the rims' whole arc of normals (up to the end
+//! faces', which belong to a convex component that GJK answers with one seed), fewer of the
+//! rim's pairs are pruned and the valleys keep 7.
 //! FIXME (issue 15): one seed per valley without dropping a minimum.
 
 mod common;
@@ -50,7 +53,7 @@ fn a_pencil_leaning_in_a_tube_gets_a_seed_at_each_rim_contact() {
     let minima = [DVec3::new(5.0, 0.0, 60.0), DVec3::new(-5.0, 0.0, 0.0)];
     let on_tube: Vec<DVec3> = seeds.iter().map(|s| s.a.local_point).collect();
     println!("seeds on the tube: {on_tube:?}");
-    assert!(seeds.len() <= 5, "{on_tube:?}");
+    assert!(seeds.len() <= 7, "{on_tube:?}");
     for m in minima {
         // Within a leaf's size (the pencil's pieces are about 2.5 mm long) of the minimum.
         assert!(
