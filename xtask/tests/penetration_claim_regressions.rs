@@ -220,7 +220,12 @@ fn a_pencil_pressed_into_the_paperweight_dome_is_a_penetration() {
     for y in [-4.0281981562277135e-15, -4.202923375831177e-15] {
         let pose_b = pose(
             [-60.0, y, 54.08951549667865],
-            [0.0, 0.7071067811865475, 0.0, 0.7071067811865476],
+            [
+                0.0,
+                0.7071067811865475,
+                0.0,
+                std::f64::consts::FRAC_1_SQRT_2,
+            ],
         );
         // The pole is inside the pencil, 3.4 mm or more from every vertex of its mesh.
         let pole_in_b = pose_b.inverse() * pole;
