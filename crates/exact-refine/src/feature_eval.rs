@@ -2,7 +2,8 @@
 //! point, its first and second derivatives for 0, 1 or 2 parameters, and an outward direction.
 
 use geom_param::{
-    Boundary, DPose3, DVec3, FaceId, FeatureLocation, ParamRange, ParamSide, Solid, SurfacePoint,
+    DPose3, DVec3, FaceId, FeatureLocation, POLE_MERIDIANS, ParamRange, ParamSide, Solid,
+    SurfacePoint,
 };
 use glam::DMat3;
 
@@ -258,31 +259,33 @@ impl Body<'_> {
                 sum.try_normalize()
             }
             FeatureLocation::Vertex { id } => {
-                let samples = || {
-                    vertex_sides(solid, id).flat_map(move |(face_id, side)| {
-                        let surface = &solid.face(face_id).surface;
-                        let domain = surface.domain();
-                        let running =
-                            usize::from(matches!(side, ParamSide::UMin | ParamSide::UMax));
-                        (0..4).map(move |k| {
-                            let t =
-                                domain[running].min + domain[running].span() * f64::from(k) / 4.0;
-                            (surface, side, side_params(&domain, side, t))
-                        })
-                    })
-                };
                 // Where edges end (a corner): the mean of their faces' normals there.
                 if let Some(corner) = corner_normal(solid, id) {
                     return Some(frame.vector(corner));
                 }
-                // A pole has a normal; only an apex needs the (more costly) inward tangents.
-                samples()
-                    .find_map(|(surface, _, [a, b])| surface.normal(a, b))
-                    .or_else(|| {
-                        let inward: DVec3 = samples()
-                            .map(|(surface, side, [a, b])| {
-                                inward_tangent(surface.eval(a, b), side).normalize_or_zero()
+                // A pole has a normal; only an apex needs the inward tangents. Four meridians of
+                // each face collapsed here: every fourth of its side_meridians's.
+                solid
+                    .pole_meridians(id)
+                    .find_map(|side_meridians| {
+                        let surface = &solid.face(side_meridians.face).surface;
+                        let domain = surface.domain();
+                        side_meridians
+                            .at
+                            .iter()
+                            .step_by(POLE_MERIDIANS / 4)
+                            .find_map(|&t| {
+                                let [a, b] = side_params(&domain, side_meridians.side, t);
+                                surface.normal(a, b)
                             })
+                    })
+                    .or_else(|| {
+                        let inward: DVec3 = solid
+                            .pole_meridians(id)
+                            .flat_map(|side_meridians| {
+                                side_meridians.tangents.iter().step_by(POLE_MERIDIANS / 4)
+                            })
+                            .map(|t| t.normalize_or_zero())
                             .sum();
                         (-inward).try_normalize()
                     })
@@ -312,34 +315,6 @@ fn face_eval(frame: &Frame, s: &SurfacePoint) -> FeatureEval {
         d: [r(s.du), r(s.dv)],
         dd: [[r(s.duu), r(s.duv)], [r(s.duv), r(s.dvv)]],
     }
-}
-
-/// The derivative pointing from `side` into the face's interior, in the face's frame.
-pub(crate) fn inward_tangent(s: geom_param::SurfacePoint, side: ParamSide) -> DVec3 {
-    match side {
-        ParamSide::UMin => s.du,
-        ParamSide::UMax => -s.du,
-        ParamSide::VMin => s.dv,
-        ParamSide::VMax => -s.dv,
-    }
-}
-
-/// The (face, side) pairs that collapse into vertex `id`.
-pub(crate) fn vertex_sides(
-    solid: &Solid,
-    id: geom_param::VertexId,
-) -> impl Iterator<Item = (geom_param::FaceId, ParamSide)> + '_ {
-    solid.vertex(id).faces.iter().flat_map(move |&face_id| {
-        [
-            ParamSide::UMin,
-            ParamSide::UMax,
-            ParamSide::VMin,
-            ParamSide::VMax,
-        ]
-        .into_iter()
-        .filter(move |&side| solid.face(face_id).boundary(side) == Boundary::Vertex(id))
-        .map(move |side| (face_id, side))
-    })
 }
 
 /// The mean of the normals of the faces around a vertex where edges end, taken at the edges'

@@ -2,17 +2,11 @@
 //! onto the bounding edge or vertex when a face parameter reaches its side, and back into an
 //! adjacent face when the objective decreases into it.
 
-use crate::feature_eval::{
-    Body, Loc, LocalFacePoint, inward_tangent, side_of, side_params, vertex_sides, wrap,
-};
+use crate::feature_eval::{Body, Loc, LocalFacePoint, side_of, side_params, wrap};
 use geom_param::{
     Boundary, DVec2, DVec3, EdgeId, EdgeUse, FaceId, FeatureId, FeatureLocation, ParamRange,
     ParamSide, Solid, SurfacePoint,
 };
-
-/// Samples of the running parameter tried when leaving a vertex into a face: the best one is
-/// only a start, Newton then turns the running parameter to the optimum.
-const VERTEX_EXIT_SAMPLES: u32 = 16;
 
 /// The parameter across a face side that collapses into a smooth pole, moved from
 /// `x` (on the side) into the face by the pull's component along the meridian `tangent` (the
@@ -357,6 +351,8 @@ impl TakenEntries {
 /// From an edge or vertex, the adjacent face location (on the shared side) whose inward
 /// direction makes the largest angle-cosine with `pull` (the direction, in A's frame, in which
 /// moving the point decreases the objective), if that component exceeds `threshold` (mm).
+/// From a vertex a face collapses into, its directions are its [`geom_param::PoleMeridians`]:
+/// the best one is only a start, Newton then turns the running parameter to the optimum.
 pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Loc {
     reenter_untaken(body, loc, pull, threshold, &TakenEntries::default())
 }
@@ -444,38 +440,29 @@ pub(crate) fn reenter_untaken(
                     }
                 }
             }
-            for (face_id, side) in vertex_sides(solid, id) {
-                let surface = &solid.face(face_id).surface;
-                let domain = surface.domain();
-                let across = usize::from(matches!(side, ParamSide::VMin | ParamSide::VMax));
-                let range = domain[1 - across];
-                let samples = VERTEX_EXIT_SAMPLES as usize;
-                let at = |k: usize| range.min + range.span() * k as f64 / samples as f64;
-                let tangent_at = |t: f64| {
-                    let [u, v] = side_params(&domain, side, t);
-                    inward_tangent(surface.eval(u, v), side)
-                };
-                let tangents: [DVec3; VERTEX_EXIT_SAMPLES as usize] =
-                    std::array::from_fn(|k| tangent_at(at(k)));
-                for (k, &tangent) in tangents.iter().enumerate() {
-                    let t = at(k);
-                    let mut uv = side_params(&domain, side, t);
+            for side_meridians in solid.pole_meridians(id) {
+                let domain = solid.face(side_meridians.face).surface.domain();
+                let across = usize::from(matches!(
+                    side_meridians.side,
+                    ParamSide::VMin | ParamSide::VMax
+                ));
+                for ((&t, &tangent), &opposite) in side_meridians
+                    .at
+                    .iter()
+                    .zip(&side_meridians.tangents)
+                    .zip(&side_meridians.opposite)
+                {
+                    let mut uv = side_params(&domain, side_meridians.side, t);
                     // Off a smooth pole only, where the meridian half a turn round leaves in the
                     // opposite direction (a tangent plane); an apex (a cone's tip) is a vertex
-                    // of the solid, and its re-entry starts on it as before. Round a periodic
-                    // side that meridian is the sample half the samples on.
-                    let opposite = if range.periodic {
-                        tangents[(k + samples / 2) % samples]
-                    } else {
-                        tangent_at(t + 0.5 * range.span())
-                    };
+                    // of the solid, and its re-entry starts on it as before.
                     let smooth = (tangent.normalize_or_zero() + opposite.normalize_or_zero())
                         .length()
                         <= 1e-6;
                     if smooth {
                         uv[across] = off_vertex(
                             &domain[across],
-                            side,
+                            side_meridians.side,
                             uv[across],
                             frame.vector(tangent),
                             pull,
@@ -484,7 +471,7 @@ pub(crate) fn reenter_untaken(
                     offer(
                         tangent,
                         FeatureLocation::Face {
-                            id: face_id,
+                            id: side_meridians.face,
                             u: uv[0],
                             v: uv[1],
                         },

@@ -401,12 +401,7 @@ impl Builder {
                 }
             })
             .collect();
-        Solid {
-            faces: self.faces,
-            edges,
-            vertices,
-            tolerance: Solid::DEFAULT_TOLERANCE,
-        }
+        Solid::new(self.faces, edges, vertices, Solid::DEFAULT_TOLERANCE)
     }
 }
 
@@ -649,12 +644,7 @@ fn revolved_solid(profile: &Profile) -> Solid {
     } else {
         Vec::new()
     };
-    Solid {
-        faces,
-        edges,
-        vertices,
-        tolerance: Solid::DEFAULT_TOLERANCE,
-    }
+    Solid::new(faces, edges, vertices, Solid::DEFAULT_TOLERANCE)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1082,14 +1072,14 @@ fn a_loop_without_area_is_an_error() {
         TrimEntry::new(EdgeId(0), Box::new(line(a, b)), false),
         TrimEntry::new(EdgeId(1), Box::new(line(b, a)), false),
     ];
-    let solid = Solid {
-        faces: vec![Face {
+    let solid = Solid::new(
+        vec![Face {
             surface: Box::new(plane),
             boundary: [Boundary::Trimmed; 4],
             trim: Some(Trim::new(vec![TrimLoop::new(entries)], &plane.domain())),
             convexity: FaceConvexity::Flat,
         }],
-        edges: vec![
+        vec![
             Edge {
                 curve: Box::new(Line { a, b }),
                 uses: [on(0), on(0)],
@@ -1103,15 +1093,15 @@ fn a_loop_without_area_is_an_error() {
                 convexity: EdgeConvexity::Convex,
             },
         ],
-        vertices: [a, b]
+        [a, b]
             .map(|point| Vertex {
                 point,
                 faces: vec![],
                 edges: vec![EdgeId(0), EdgeId(1)],
             })
             .into(),
-        tolerance: 0.0,
-    };
+        0.0,
+    );
     // Validation refuses it first: each edge lies on one face only (an open shell).
     let result = ObjectModel::from_solid("flat loop", solid, &options(0.05));
     assert!(

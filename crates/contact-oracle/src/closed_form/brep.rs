@@ -184,12 +184,7 @@ fn polyhedron(points: &[DVec3], cycles: &[&[usize]]) -> Result<Solid, BuildError
             convexity: EdgeConvexity::Convex,
         });
     }
-    let solid = Solid {
-        faces,
-        edges: out_edges,
-        vertices,
-        tolerance: 0.0,
-    };
+    let solid = Solid::new(faces, out_edges, vertices, 0.0);
     validate(&solid)?;
     Ok(solid)
 }

@@ -526,12 +526,7 @@ pub fn extrude(profile: &PlanarProfile, z0: f64, z1: f64) -> Result<Solid, Build
             convexity: FaceConvexity::Flat,
         });
     }
-    let solid = Solid {
-        faces,
-        edges,
-        vertices,
-        tolerance,
-    };
+    let solid = Solid::new(faces, edges, vertices, tolerance);
     validate(&solid)?;
     Ok(solid)
 }

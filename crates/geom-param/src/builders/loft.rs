@@ -291,8 +291,8 @@ pub fn loft(sections: &[EllipseSection]) -> Result<Solid, BuildError> {
         trim: Some(trim),
         convexity: FaceConvexity::Flat,
     };
-    let solid = Solid {
-        faces: vec![
+    let solid = Solid::new(
+        vec![
             Face {
                 surface: Box::new(side),
                 boundary: [
@@ -308,9 +308,9 @@ pub fn loft(sections: &[EllipseSection]) -> Result<Solid, BuildError> {
             cap(top, top_trim),
         ],
         edges,
-        vertices: Vec::new(),
+        Vec::new(),
         tolerance,
-    };
+    );
     validate(&solid)?;
     Ok(solid)
 }

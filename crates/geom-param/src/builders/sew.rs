@@ -223,12 +223,7 @@ pub fn sew_rectangles(
             convexity: FaceConvexity::Flat,
         })
         .collect();
-    let solid = Solid {
-        faces,
-        edges,
-        vertices,
-        tolerance,
-    };
+    let solid = Solid::new(faces, edges, vertices, tolerance);
     validate(&solid)?;
     Ok(solid)
 }

@@ -176,17 +176,17 @@ pub fn tube(outer_radius: f64, inner_radius: f64, length: f64) -> Result<Solid, 
         trim: Some(trim),
         convexity: FaceConvexity::Flat,
     };
-    let solid = Solid {
-        faces: vec![
+    let solid = Solid::new(
+        vec![
             cylinder_face(Box::new(outer), 0, 1),
             cylinder_face(Box::new(inner), 3, 2),
             cap(bottom, bottom_trim),
             cap(top, top_trim),
         ],
         edges,
-        vertices: Vec::new(),
-        tolerance: 1e-9 * outer_radius.max(length),
-    };
+        Vec::new(),
+        1e-9 * outer_radius.max(length),
+    );
     validate(&solid)?;
     Ok(solid)
 }

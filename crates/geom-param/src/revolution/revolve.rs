@@ -88,10 +88,5 @@ pub fn revolve(profile: &Profile) -> Solid {
         Vec::new()
     };
 
-    Solid {
-        faces,
-        edges,
-        vertices,
-        tolerance: Solid::DEFAULT_TOLERANCE,
-    }
+    Solid::new(faces, edges, vertices, Solid::DEFAULT_TOLERANCE)
 }

@@ -3,6 +3,7 @@
 pub(crate) mod components;
 pub(crate) mod convexity;
 pub(crate) mod feature;
+pub(crate) mod pole_meridians;
 pub(crate) mod solid;
 pub(crate) mod trim;
 pub(crate) mod validate;

@@ -11,8 +11,10 @@ use crate::curves::curve::{Curve, CurvePoint};
 use crate::curves::curve2::Curve2Point;
 use crate::surfaces::surface::{Surface, SurfacePoint};
 use crate::topology::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
+use crate::topology::pole_meridians::{PoleMeridians, pole_meridians};
 use crate::topology::trim::Trim;
 use glam::{DVec2, DVec3};
+use std::sync::OnceLock;
 
 /// One side of a face's parameter rectangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -183,9 +185,34 @@ pub struct Solid {
     /// edges' ends, and a p-curve's point from its edge's point. 0 is read as the default,
     /// [`Solid::DEFAULT_TOLERANCE`].
     pub tolerance: f64,
+    /// The meridians of the face sides collapsed into vertices, computed at the first call of
+    /// [`Solid::pole_meridians`] (so a solid must not be changed after it has been queried).
+    pub(crate) pole_meridians: OnceLock<Vec<PoleMeridians>>,
 }
 
 impl Solid {
+    /// A solid of these faces, edges and vertices, with model tolerance `tolerance` (mm, 0 for
+    /// [`Solid::DEFAULT_TOLERANCE`]). Nothing is checked here: see [`crate::validate`].
+    #[must_use]
+    pub fn new(faces: Vec<Face>, edges: Vec<Edge>, vertices: Vec<Vertex>, tolerance: f64) -> Self {
+        Self {
+            faces,
+            edges,
+            vertices,
+            tolerance,
+            pole_meridians: OnceLock::new(),
+        }
+    }
+
+    /// The meridians of the face sides that collapse into vertex `vertex` ([`PoleMeridians`]), each face
+    /// side once; empty where none does. Computed for the whole solid at the first call, then
+    /// read.
+    pub fn pole_meridians(&self, vertex: VertexId) -> impl Iterator<Item = &PoleMeridians> + '_ {
+        let all = self.pole_meridians.get_or_init(|| pole_meridians(self));
+        let start = all.partition_point(|m| m.vertex < vertex);
+        all[start..].iter().take_while(move |m| m.vertex == vertex)
+    }
+
     /// The tolerance of a solid built in code (mm): edges meet their faces to rounding.
     pub const DEFAULT_TOLERANCE: f64 = 1e-7;
 

@@ -933,12 +933,7 @@ impl<'g, 'a> Builder<'g, 'a> {
             });
         }
         let tolerance = self.uncertainty.max(HEAL_MARGIN * self.worst_gap);
-        let mut solid = Solid {
-            faces,
-            edges,
-            vertices,
-            tolerance,
-        };
+        let mut solid = Solid::new(faces, edges, vertices, tolerance);
         validate(&solid).map_err(|source| StepError::Topology {
             id: self.solid_id,
             name: name.clone(),
