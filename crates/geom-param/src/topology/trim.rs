@@ -11,7 +11,9 @@
 //! Containment is the winding number of the polylines, refined by the exact p-curve near the
 //! boundary: within the polyline's flatness of an entry, the side of the exact curve's tangent at
 //! the nearest exact point decides. Nearest points are found on the polyline and then polished by
-//! Newton's method on |c(t) - (u, v)|² over the entry's exact p-curve.
+//! Newton's method on |c(t) - (u, v)|² over the entry's exact p-curve. Both scans skip runs of
+//! [`SEGMENTS_PER_BOX`] segments by their boxes: a run farther than the best point so far, or
+//! not spanning the ray's height, holds no segment that would count.
 
 use crate::curves::curve::ParamRange;
 use crate::curves::curve2::Curve2;
@@ -24,6 +26,12 @@ pub const FLATNESS: f64 = 1e-4;
 pub const MAX_SEGMENTS_PER_ENTRY: usize = 4096;
 /// Newton steps that polish a nearest boundary point found on the polyline.
 const POLISH_STEPS: usize = 8;
+/// Consecutive polyline segments under one box of [`TrimEntry`]'s second level.
+///
+/// Why: a face is asked for its nearest boundary point and whether it contains a point at every
+/// Newton step on it, and a circle's polyline has about 160 segments at [`FLATNESS`]; scanning
+/// them all was a quarter of a loft-on-tube query (its tube's annulus faces).
+pub const SEGMENTS_PER_BOX: usize = 8;
 
 /// One edge of a loop: the edge, its p-curve on this face and the direction the loop takes it.
 #[derive(Debug)]
@@ -38,6 +46,9 @@ pub struct TrimEntry {
     polyline: Vec<(f64, DVec2)>,
     /// The axis-aligned box of `polyline` (min, max corners; empty: +∞, −∞), built with it.
     bounds: (DVec2, DVec2),
+    /// The boxes of runs of [`SEGMENTS_PER_BOX`] segments: box k holds the points
+    /// k · [`SEGMENTS_PER_BOX`] ..= (k + 1) · [`SEGMENTS_PER_BOX`] (the last run fewer).
+    boxes: Vec<(DVec2, DVec2)>,
 }
 
 impl TrimEntry {
@@ -50,6 +61,7 @@ impl TrimEntry {
             reversed,
             polyline: Vec::new(),
             bounds: (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            boxes: Vec::new(),
         }
     }
 
@@ -92,12 +104,15 @@ impl TrimLoop {
         let extent = loop_extent(&entries);
         for entry in &mut entries {
             entry.polyline = sample_polyline(entry.pcurve.as_ref(), FLATNESS * extent);
-            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-            for &(_, p) in &entry.polyline {
-                lo = lo.min(p);
-                hi = hi.max(p);
-            }
-            entry.bounds = (lo, hi);
+            entry.bounds = box_of(&entry.polyline);
+            let runs = entry
+                .polyline
+                .len()
+                .saturating_sub(1)
+                .div_ceil(SEGMENTS_PER_BOX);
+            entry.boxes = (0..runs)
+                .map(|k| box_of(&entry.polyline[run_points(k, entry.polyline.len())]))
+                .collect();
         }
         Self { entries }
     }
@@ -150,6 +165,49 @@ fn entry_segments(entry: &TrimEntry) -> impl Iterator<Item = (DVec2, DVec2)> + '
             (points[k - 1].1, points[k].1)
         }
     })
+}
+
+/// The axis-aligned box of polyline points (min, max corners; empty: +∞, −∞).
+fn box_of(points: &[(f64, DVec2)]) -> (DVec2, DVec2) {
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    for &(_, p) in points {
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    (lo, hi)
+}
+
+/// The points of run `k` of a polyline of `n` points ([`TrimEntry`]'s boxes).
+fn run_points(k: usize, n: usize) -> std::ops::RangeInclusive<usize> {
+    k * SEGMENTS_PER_BOX..=((k + 1) * SEGMENTS_PER_BOX).min(n - 1)
+}
+
+/// The segments of run `k` of `entry`'s polyline, each in the loop's direction.
+fn run_segments(entry: &TrimEntry, k: usize) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
+    entry.polyline[run_points(k, entry.polyline.len())]
+        .windows(2)
+        .map(|w| {
+            if entry.reversed {
+                (w[1].1, w[0].1)
+            } else {
+                (w[0].1, w[1].1)
+            }
+        })
+}
+
+/// Whether every point of the box `(lo, hi)` is farther from `uv` than `distance`, by more than
+/// the rounding of a computed segment distance (a few ε of the coordinates): then no segment in
+/// it would replace a best point at that distance.
+fn farther((lo, hi): (DVec2, DVec2), uv: DVec2, distance: f64) -> bool {
+    let gap = (lo - uv).max(uv - hi).max(DVec2::ZERO).length();
+    let coordinates = uv.abs().max(lo.abs()).max(hi.abs()).max_element();
+    gap - 64.0 * f64::EPSILON * (coordinates + gap) > distance
+}
+
+/// Whether a box lies wholly above height `y` or wholly at or below it: then no segment in it
+/// crosses the ray at that height as [`Trim::winding`] counts crossings.
+fn off_height((lo, hi): (DVec2, DVec2), y: f64) -> bool {
+    lo.y > y || hi.y <= y
 }
 
 /// The region of a face's parameter plane inside its outer loop and outside its holes.
@@ -219,8 +277,9 @@ impl Trim {
     }
 
     /// Winding number of the polylines around `uv` (1 inside, 0 outside, for a valid trim):
-    /// the crossings of [`TrimLoop::segments`] with the ray from `uv` along +u. An entry whose
-    /// box lies wholly above `uv` or wholly at or below it has no segment that crosses.
+    /// the crossings of [`TrimLoop::segments`] with the ray from `uv` along +u. An entry or a
+    /// run whose box lies wholly above `uv` or wholly at or below it has no segment that
+    /// crosses.
     fn winding(&self, uv: DVec2) -> i32 {
         let crossing = |(a, b): (DVec2, DVec2)| {
             if a.y <= uv.y {
@@ -232,11 +291,14 @@ impl Trim {
         let mut w = 0;
         for l in &self.loops {
             for entry in &l.entries {
-                let (lo, hi) = entry.bounds;
-                if lo.y > uv.y || hi.y <= uv.y {
+                if off_height(entry.bounds, uv.y) {
                     continue;
                 }
-                w += entry_segments(entry).map(crossing).sum::<i32>();
+                for (k, &run) in entry.boxes.iter().enumerate() {
+                    if !off_height(run, uv.y) {
+                        w += run_segments(entry, k).map(crossing).sum::<i32>();
+                    }
+                }
             }
             w += l.closing_segment().map_or(0, crossing);
         }
@@ -253,14 +315,20 @@ impl Trim {
     #[must_use]
     pub fn contains(&self, uv: DVec2, tolerance: f64) -> bool {
         let uv = self.unwrap(uv);
-        let Some(near) = self.nearest(uv) else {
+        if self.loops.iter().all(|l| l.entries.is_empty()) {
             return false;
+        }
+        let (lo, hi) = self.bounds();
+        let band = 2.0 * FLATNESS * (hi - lo).max_element();
+        // Only a boundary point within the tolerance or the band matters, and a polyline lies
+        // within its flatness (half the band) of its curve: a point with no polyline point
+        // within one more band is classified by the winding number, without a nearest point.
+        let Some(near) = self.nearest_within(uv, tolerance.max(band) + band) else {
+            return self.winding(uv) != 0;
         };
         if near.distance <= tolerance {
             return true;
         }
-        let (lo, hi) = self.bounds();
-        let band = 2.0 * FLATNESS * (hi - lo).max_element();
         if near.distance > band {
             return self.winding(uv) != 0;
         }
@@ -309,45 +377,54 @@ impl Trim {
     /// without loops.
     #[must_use]
     pub fn nearest(&self, uv: DVec2) -> Option<TrimNearest> {
-        let uv = self.unwrap(uv);
+        self.nearest_within(self.unwrap(uv), f64::INFINITY)
+    }
+
+    /// [`Trim::nearest`] for a `uv` already unwrapped, when some point of the polylines lies
+    /// within `limit` of it; `None` otherwise. Where it is found it is the same point (the
+    /// polylines' nearest, polished), as the limit only skips what lies beyond it.
+    fn nearest_within(&self, uv: DVec2, limit: f64) -> Option<TrimNearest> {
         let mut best: Option<TrimNearest> = None;
         for (li, l) in self.loops.iter().enumerate() {
             for (ei, e) in l.entries.iter().enumerate() {
-                // An entry whose box is farther than the best distance so far, by more than the
-                // rounding of a computed segment distance (a few ε of the coordinates), has no
-                // segment that would replace it.
-                if let Some(bst) = &best {
-                    let (lo, hi) = e.bounds;
-                    let gap = (lo - uv).max(uv - hi).max(DVec2::ZERO).length();
-                    let coordinates = uv.abs().max(lo.abs()).max(hi.abs()).max_element();
-                    if gap - 64.0 * f64::EPSILON * (coordinates + gap) > bst.distance {
+                // An entry whose box is farther than the limit or the best distance so far, by
+                // more than the rounding of a computed segment distance (a few ε of the
+                // coordinates), has no segment that would be taken; nor has a run of them.
+                let bound = |best: &Option<TrimNearest>| {
+                    best.as_ref().map_or(limit, |bst| bst.distance.min(limit))
+                };
+                if farther(e.bounds, uv, bound(&best)) {
+                    continue;
+                }
+                for (k, &run) in e.boxes.iter().enumerate() {
+                    if farther(run, uv, bound(&best)) {
                         continue;
                     }
-                }
-                for w in e.polyline.windows(2) {
-                    let ((t0, a), (t1, b)) = (w[0], w[1]);
-                    let ab = b - a;
-                    let len2 = ab.length_squared();
-                    let s = if len2 > 0.0 {
-                        ((uv - a).dot(ab) / len2).clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    let p = a + s * ab;
-                    let d = p.distance(uv);
-                    if best.is_none_or(|bst| d < bst.distance) {
-                        best = Some(TrimNearest {
-                            loop_index: li,
-                            index: ei,
-                            t: t0 + s * (t1 - t0),
-                            point: p,
-                            distance: d,
-                        });
+                    for w in e.polyline[run_points(k, e.polyline.len())].windows(2) {
+                        let ((t0, a), (t1, b)) = (w[0], w[1]);
+                        let ab = b - a;
+                        let len2 = ab.length_squared();
+                        let s = if len2 > 0.0 {
+                            ((uv - a).dot(ab) / len2).clamp(0.0, 1.0)
+                        } else {
+                            0.0
+                        };
+                        let p = a + s * ab;
+                        let d = p.distance(uv);
+                        if best.is_none_or(|bst| d < bst.distance) {
+                            best = Some(TrimNearest {
+                                loop_index: li,
+                                index: ei,
+                                t: t0 + s * (t1 - t0),
+                                point: p,
+                                distance: d,
+                            });
+                        }
                     }
                 }
             }
         }
-        let mut near = best?;
+        let mut near = best.filter(|b| b.distance <= limit)?;
         let entry = &self.loops[near.loop_index].entries[near.index];
         let range = entry.pcurve.domain();
         let mut t = near.t;
