@@ -1154,3 +1154,57 @@ fn a_seed_on_a_dome_pole_finds_the_overlap() {
         );
     }
 }
+
+/// Found by the flip property (vase-paperweight, seed 4253441373073103668 of
+/// `cargo xtask soak 10000 --seed 11103`): the vase's bottom rim (edge 0) pressed on the
+/// paperweight next to its edge 2, moved to 4.377e-7 mm past delta1, was answered separated.
+/// Stage 2's one seed lay on both rims (v = 1 to rounding on each side); its projection from
+/// the mesh point put the vase's side 1.5e-8 in parameter into its face, and the pair solve
+/// from there crept along the rim for 158 steps without converging, so the seed was dropped.
+/// From the seed's own locations the solve converges to the edge-face witness. Fixed in
+/// `exact_refine::newton_refiner::from_seed_locations`: a solve that did not converge from the
+/// projected start is tried again from the seed's locations. The distance on each side of
+/// delta1 is the pose's construction: 4.377e-7 mm past it and short of it.
+#[test]
+fn crossing_rims_moved_past_delta1_are_a_penetration() {
+    let (pipeline, objects) = setup();
+    let rotation = [
+        -0.2466957993634416,
+        -0.6625872827075046,
+        -0.7019250165817053,
+        0.08614259380521863,
+    ];
+    let into = pose(
+        [-29.87198781222085, -4.111267548581583, -34.933601661372286],
+        rotation,
+    );
+    let short = pose(
+        [-29.87198786602077, -4.111267539894803, -34.93360253508057],
+        rotation,
+    );
+    let delta1 = pipeline.options().delta1;
+    // The vase's rim point of the witness (world frame = the vase's frame).
+    let rim_point = DVec3::new(-25.667565767492583, 4.144401955824614, 0.0);
+    for (pose_b, state, distance) in [
+        (&into, PairState::Penetration, delta1 - 4.377e-7),
+        (&short, PairState::Contact, delta1 + 4.377e-7),
+    ] {
+        let (ab, ba) = both_orders(&pipeline, &objects, "vase", "paperweight", pose_b);
+        assert_eq!(ab.state, state, "{ab:?}");
+        assert_eq!(ba.state, state, "{ba:?}");
+        assert!(
+            ab.contacts
+                .iter()
+                .any(|c| (c.distance - distance).abs() < 1e-9
+                    && c.point_a.distance(rim_point) < 1e-6),
+            "{ab:?}"
+        );
+        assert!(
+            ba.contacts
+                .iter()
+                .any(|c| (c.distance - distance).abs() < 1e-9
+                    && c.point_b.distance(rim_point) < 1e-6),
+            "{ba:?}"
+        );
+    }
+}
