@@ -35,18 +35,11 @@ pub enum HullProximity {
     NotConverged,
 }
 
-/// GJK's simplex and, after a run, the support points of its final simplices (current and
-/// previous) as candidates for the cap fallback (A's frame).
+/// GJK's simplex, reused across queries.
 #[derive(Clone, Debug, Default)]
 pub struct GjkScratch {
-    /// Parry's simplex, reused across queries.
+    /// Parry's simplex.
     pub simplex: VoronoiSimplex,
-    /// Support points on A's hull.
-    pub on_a: [DVec3; 8],
-    /// Support points on B's hull (A's frame).
-    pub on_b: [DVec3; 8],
-    /// How many entries of `on_a` and `on_b` are valid.
-    pub len: usize,
 }
 
 /// Runs GJK between `hull_a` and `hull_b` (B posed by `pose_ab` in A's frame), up to distance
@@ -63,12 +56,7 @@ pub fn hull_proximity(
     warm: &mut WarmStart,
     gjk_scratch: &mut GjkScratch,
 ) -> (HullProximity, u32) {
-    let GjkScratch {
-        simplex,
-        on_a,
-        on_b,
-        len,
-    } = gjk_scratch;
+    let GjkScratch { simplex } = gjk_scratch;
     let sa = HillClimbSupport::new(hull_a, warm.vertex_a);
     let sb = HillClimbSupport::new(hull_b, warm.vertex_b);
     let dir = warm
@@ -78,14 +66,6 @@ pub fn hull_proximity(
         .unwrap_or(DVec3::X);
     simplex.reset(CsoPoint::from_shapes(pose_ab, &sa, &sb, dir));
     let result = gjk::closest_points(pose_ab, &sa, &sb, max_distance, true, simplex);
-    *len = 0;
-    let current = (0..=simplex.dimension().min(3)).map(|i| simplex.point(i));
-    let previous = (0..=simplex.prev_dimension().min(3)).map(|i| simplex.prev_point(i));
-    for p in current.chain(previous) {
-        on_a[*len] = p.orig1;
-        on_b[*len] = p.orig2;
-        *len += 1;
-    }
     let verdict = match result {
         GJKResult::ClosestPoints(p1, p2, n) => {
             warm.dir = n;

@@ -150,18 +150,15 @@ impl MeshPhase for MeshNarrowphase {
             match proximity {
                 HullProximity::Separated => return MeshVerdict::Separated,
                 HullProximity::Close { p1, p2 } => {
-                    let g = &scratch.gjk;
-                    let inverse = pose_ab.inverse();
-                    let on_b = g.on_b.map(|p| inverse * p);
-                    let seed_a =
-                        side_a
-                            .seed_side
-                            .seed_point_on_hull(p1, &g.on_a[..g.len], on_mesh(&side_a));
-                    let seed_b = side_b.seed_side.seed_point_on_hull(
-                        inverse * p2,
-                        &on_b[..g.len],
-                        on_mesh(&side_b),
-                    );
+                    // A hull point off the surface lies on a facet that caps or bridges the
+                    // component (`ComponentKind::Convex`), and says nothing about where its
+                    // surface is nearest: the general path answers. (Snapped to the nearest
+                    // hull vertex instead, an L-bracket's far corner seeded a minimum at
+                    // 0.266 mm and the one at 0.035 mm beside the bridge was missed.)
+                    let seed_a = side_a.seed_side.seed_point(p1, on_mesh(&side_a));
+                    let seed_b = side_b
+                        .seed_side
+                        .seed_point(pose_ab.inverse() * p2, on_mesh(&side_b));
                     if let (Some(a), Some(b)) = (seed_a, seed_b) {
                         out.seeds.push(Seed { a, b });
                         return MeshVerdict::Seeds;

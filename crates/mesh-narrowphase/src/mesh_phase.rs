@@ -278,8 +278,8 @@ pub struct MeshStats {
     pub proxy_built: bool,
     /// Support-map evaluations made by GJK (0 when GJK did not run).
     pub gjk_iterations: u32,
-    /// Whether the convex pair fell back to the triangle path (hulls overlapping, or GJK not
-    /// converged).
+    /// Whether the convex pair fell back to the general path (hulls overlapping, GJK not
+    /// converged, or a closest hull point off the surface).
     pub convex_fallback: bool,
     /// Patch-tree node pairs examined ([`crate::ConcavePath::NormalCones`]).
     pub node_pairs_visited: u32,

@@ -38,30 +38,4 @@ impl MeshSide<'_> {
             }
         })
     }
-
-    /// The seed point for a GJK closest point `point` on the component's hull (own frame).
-    /// If it lies on the mesh (within `on_mesh` mm) it is located there. Otherwise it lies on a
-    /// hull facet that is no part of the surface (a cap): it is replaced by the nearest of the
-    /// hull vertices `candidates` (the GJK simplex's support points, which are mesh vertices),
-    /// located on the mesh; Stage 3 moves it from there.
-    #[must_use]
-    pub fn seed_point_on_hull(
-        &self,
-        point: DVec3,
-        candidates: &[DVec3],
-        on_mesh: f64,
-    ) -> Option<SeedPoint> {
-        if let Some(s) = self.seed_point(point, on_mesh) {
-            return Some(s);
-        }
-        let vertex = candidates
-            .iter()
-            .copied()
-            .filter(|c| c.is_finite())
-            .min_by(|x, y| {
-                x.distance_squared(point)
-                    .total_cmp(&y.distance_squared(point))
-            })?;
-        self.seed_point(vertex, on_mesh)
-    }
 }

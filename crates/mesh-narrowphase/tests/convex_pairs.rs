@@ -187,11 +187,13 @@ fn two_spheres_give_one_seed_at_the_closed_form_points_and_no_proxy() {
 }
 
 #[test]
-fn closest_point_on_a_hull_cap_maps_to_a_mesh_vertex() {
+fn a_closest_point_on_a_hull_cap_sends_the_pair_to_the_general_path() {
     // The socket's outer (convex) component is the outer sphere and the flat rim annulus at
     // z = 40; its hull is closed by a cap over the opening. A ball hovering over the centre of the
-    // opening is closest to the cap's centre (0, 0, 40), which is no point of the surface: the
-    // seed must be a vertex of the rim (inner rim circle r = 30, z = 40), located exactly.
+    // opening is closest to the cap's centre (0, 0, 40), which is no point of the surface and
+    // says nothing about where the surface is nearest. The general path answers: the nearest
+    // points of the component are on the inner rim circle (r = 30, z = 40), sqrt(30² + 10.2²)
+    // - 10 = 21.7 mm from the ball, far outside the band, so no seed.
     let socket = Prepared::new(socket(30.0, 35.0, 40.0, 0.05));
     let ball = Prepared::new(sphere(10.0, 0.05));
     let outer = components_of(&socket.object, ComponentKind::Convex)[0];
@@ -200,29 +202,36 @@ fn closest_point_on_a_hull_cap_maps_to_a_mesh_vertex() {
         delta1: -0.05,
         delta2: 0.3,
     };
-    let pose = pose(DQuat::IDENTITY, DVec3::new(0.0, 0.0, 50.2));
+    let mut scratch = MeshScratch::default();
+    let over_the_opening = pose(DQuat::IDENTITY, DVec3::new(0.0, 0.0, 50.2));
+    let ball_id = ball.object.components[0].id;
     let (verdict, out) = query(
         &socket,
         outer,
         &ball,
-        ball.object.components[0].id,
-        &pose,
+        ball_id,
+        &over_the_opening,
         &band,
-        &mut MeshScratch::default(),
+        &mut scratch,
     );
+    assert!(out.stats.convex_fallback, "{:?}", out.stats);
+    assert_eq!(verdict, MeshVerdict::Separated, "{:?}", out.seeds);
+    // Over the rim annulus (r = 32.5), 0.2 mm above it: GJK's closest point is on the surface,
+    // and the seed is the annulus point under the ball.
+    let over_the_rim = pose(DQuat::IDENTITY, DVec3::new(32.5, 0.0, 50.2));
+    let (verdict, out) = query(
+        &socket,
+        outer,
+        &ball,
+        ball_id,
+        &over_the_rim,
+        &band,
+        &mut scratch,
+    );
+    assert!(!out.stats.convex_fallback, "{:?}", out.stats);
     assert_eq!(verdict, MeshVerdict::Seeds);
-    let seed = out.seeds[0];
-    let p = seed.a.local_point;
-    assert!((p.z - 40.0).abs() <= 1e-9, "{p}");
-    let r = p.truncate().length();
-    assert!(
-        (r - 30.0).abs() <= 1e-9 || (r - 35.0).abs() <= 1e-9,
-        "not on a rim circle: {p}"
-    );
-    let exact = socket.object.solid.point_at(&seed.a.location);
-    assert!(
-        exact.distance(p) <= 1e-9,
-        "{:?} at {exact}, seed {p}",
-        seed.a.location
-    );
+    let p = out.seeds[0].a.local_point;
+    assert!(p.distance(DVec3::new(32.5, 0.0, 40.0)) <= 0.05, "{p}");
+    let exact = socket.object.solid.point_at(&out.seeds[0].a.location);
+    assert!(exact.distance(p) <= 0.05, "{exact} against {p}");
 }

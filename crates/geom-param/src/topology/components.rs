@@ -14,7 +14,12 @@ use crate::topology::solid::{EdgeConvexity, FaceConvexity, Solid};
 /// Convex or concave.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ComponentKind {
-    /// Forms no concavity: its convex hull touches all of it, so GJK on the hull applies.
+    /// Forms no concavity: no concave face and no concave edge inside it, so its convex hull
+    /// touches all of it, and GJK on the hull applies. The hull may also have facets off the
+    /// surface: a cap across its open boundary (a goblet cup's mouth), or a bridge across a
+    /// gap between faces that are each convex (an L-bracket's outer faces, around the inner
+    /// corner). Where GJK's closest point lies on such a facet, the pair needs the general
+    /// path.
     Convex,
     /// Has concave faces: handled through an offset proxy mesh.
     Concave,
