@@ -3,7 +3,7 @@
 use crate::crossing_probe::overlap_near;
 use crate::diagnostics::{diagnose, gap_within_error};
 use crate::feature_eval::{Body, Frame, Loc};
-use crate::feature_switch::on_closure;
+use crate::feature_switch::{into_faces, on_closure, onto_nearest_edge};
 use crate::newton::{Outcome, Solution, State, retry_on_sides, solve};
 use crate::options::NewtonOptions;
 use crate::penetration::solve_penetration;
@@ -203,16 +203,22 @@ fn on_seed_faces(
     }
 }
 
-/// A second start for a pair solve that did not converge from the projected seed points
-/// (`starts`): the seed's own locations (`seeds`), which the solve's start puts on an edge or
-/// vertex when they lie on one to rounding ([`crate::feature_switch::settle_start`]). The
-/// answer is the one that converged, the first when both or neither did.
+/// Other starts for a pair solve that did not converge from the projected seed points
+/// (`starts`), tried in turn until one converges: the seed's own locations (`seeds`), which the
+/// solve's start puts on an edge or vertex when they lie on one to rounding
+/// ([`crate::feature_switch::settle_start`]); both moved onto their nearest edges; and on each
+/// side the faces across that edge, the other side at its seed. The answer is the first that
+/// converged, else `solution`.
 ///
-/// Why: the projections only place the start, from points of the mesh. A seed on two crossing
-/// rims (a vase's bottom edge pressed 1.0004e-3 mm into a paperweight along its edge 2, both
-/// seed locations at v = 1 to rounding) was projected 1.5e-8 in parameter into the vase's
-/// face, and the solve from there crept along the rim for 158 steps without converging, while
-/// the one from the rims converges in 43 to the edge-face witness.
+/// Why: the projections only place the start, from points of the mesh, and a seed may lie on
+/// the wrong side of an edge. A seed on two crossing rims (a vase's bottom edge pressed
+/// 1.0004e-3 mm into a paperweight along its edge 2, both seed locations at v = 1 to rounding)
+/// was projected 1.5e-8 in parameter into the vase's face, and the solve from there crept
+/// along the rim for 158 steps without converging, while the one from the rims converges in
+/// 43 to the edge-face witness. A goblet's rim 0.012 mm inside a tube's outer cylinder, 0.19
+/// mm below its end, was seeded on the tube's end face; from there, and from the end's outer
+/// edge, the penetration solve went down the rim to a stall 1.1 mm "deep", while from the
+/// cylinder across that edge it converges in 4 steps to the witness.
 fn from_seed_locations(
     a: &Body,
     b: &Body,
@@ -222,17 +228,31 @@ fn from_seed_locations(
     base: f64,
     options: &NewtonOptions,
 ) -> Solution {
-    let seeds = (Some(seeds.0), Some(seeds.1));
-    if solution.outcome == Outcome::Converged || starts == seeds {
+    if solution.outcome == Outcome::Converged {
         return solution;
     }
-    let again = solve(a, b, seeds.0, seeds.1, base, options);
-    if again.outcome != Outcome::Converged {
-        return solution;
+    let seeds = (Some(seeds.0), Some(seeds.1));
+    let edges = (onto_nearest_edge(a, seeds.0), onto_nearest_edge(b, seeds.1));
+    let mut others = vec![seeds, edges];
+    others.extend(into_faces(a, edges.0).into_iter().map(|fa| (fa, seeds.1)));
+    others.extend(into_faces(b, edges.1).into_iter().map(|fb| (seeds.0, fb)));
+    let mut iterations = solution.iterations;
+    for (k, &start) in others.iter().enumerate() {
+        if start == starts || others[..k].contains(&start) {
+            continue;
+        }
+        let again = solve(a, b, start.0, start.1, base, options);
+        iterations += again.iterations;
+        if again.outcome == Outcome::Converged {
+            return Solution {
+                iterations,
+                ..again
+            };
+        }
     }
     Solution {
-        iterations: solution.iterations + again.iterations,
-        ..again
+        iterations,
+        ..solution
     }
 }
 

@@ -682,22 +682,22 @@ fn trimmed_analytic_faces_edges_and_corners() {
         .expect("plane"),
     );
     geom_param::validate(&tight).expect("still a valid solid");
-    let (c, _, _) = ball_at(&tight, face(5, 19.0, 19.0), corner, w, 3.0, 1e-3);
+    let (c, pa, pb) = ball_at(&tight, face(5, 19.0, 19.0), corner, w, 3.0, 1e-3);
     report(
         "block whose cap's domain is its trim's box: corner, seed on the cap, gap 1e-3",
         &c,
         1e-3,
     );
-    assert_finite(&c, "corner from a tight cap");
-    // FIXME: stuck on the cap, reported as IterationLimit with a wrong distance (-0.05, below
-    // the pipeline's default delta1: a false penetration). `take_step` cuts each step where u reaches
+    // From the seed on the cap the solve is stuck: `take_step` cuts each step where u reaches
     // the domain's side u = 20 and `settle_trimmed` keeps (20, v) on the face (it is on the
     // trim, within rounding), so every later step has length 0 and the iteration never moves
-    // on to the edge or the vertex. (The builders now keep their trims inside their planes'
-    // domains; a reader that bounds planes by their trims would meet this.)
-    assert_eq!(c.diagnostics.status, RefineStatus::IterationLimit, "{c:?}");
-    assert!(
-        matches!(c.location_a, geom_param::FeatureLocation::Face { id: geom_param::FaceId(5), u, .. } if u == 20.0),
+    // on to the edge or the vertex. That solve ends at its iteration limit, and the refiner's
+    // further starts (the seed's nearest edge, `from_seed_locations`) reach the corner.
+    assert_converged(&c, "corner from a tight cap");
+    assert_answer(&c, 1e-3, pa, pb, "corner from a tight cap");
+    assert_eq!(
+        c.location_a.feature(),
+        FeatureId::Vertex(VertexId(5)),
         "{c:?}"
     );
 
