@@ -102,9 +102,9 @@ fn a_pencil_on_a_goblet_touches_at_the_lip_and_at_the_cup_crease() {
 }
 
 /// Found as a missed contact of `soak 10000 --seed 12103` (pencil-goblet
-/// 11860975389841438187): a pencil's tip against the goblet's concave face 6 has three minima, the tip's
-/// apex at 0.0415 mm, the taper's face at 0.0661 mm and, between them, the crease where the
-/// taper (face 7) meets the tip cone (face 8) at z = 174, 0.0692 mm from the goblet's face 6.
+/// 11860975389841438187): a pencil's tip against the goblet's concave face 6 has three
+/// minima, the tip's apex at 0.0415 mm, the taper's face at 0.0661 mm and, between them, the
+/// crease where the taper (face 7) meets the tip cone (face 8) at z = 174, 0.0692 mm away.
 /// The normal-cone path seeded two pairs on the tip cone beside the crease (0.9 and 2.2 mm
 /// from it); both converged to the apex, and the crease's minimum had no seed of its own.
 /// FIXME: today two contacts are reported; the oracle's three are the truth.
