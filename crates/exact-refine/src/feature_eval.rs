@@ -119,16 +119,6 @@ pub(crate) fn side_of(param: usize, at_max: bool) -> ParamSide {
     }
 }
 
-/// The face parameters of the point at running parameter `t` on `side`.
-pub(crate) fn side_params(domain: &[ParamRange; 2], side: ParamSide, t: f64) -> [f64; 2] {
-    match side {
-        ParamSide::UMin => [domain[0].min, t],
-        ParamSide::UMax => [domain[0].max, t],
-        ParamSide::VMin => [t, domain[1].min],
-        ParamSide::VMax => [t, domain[1].max],
-    }
-}
-
 impl Body<'_> {
     /// How far apart (mm) one point may evaluate on two adjacent features of this body: the
     /// solid's model tolerance (an edge lies within it of its faces, a vertex of its edges'
@@ -264,26 +254,26 @@ impl Body<'_> {
                     return Some(frame.vector(corner));
                 }
                 // A pole has a normal; only an apex needs the inward tangents. Four meridians of
-                // each face collapsed here: every fourth of its side_meridians's.
+                // each face side collapsed here: every fourth of its `PoleMeridians`.
                 solid
                     .pole_meridians(id)
-                    .find_map(|side_meridians| {
-                        let surface = &solid.face(side_meridians.face).surface;
+                    .find_map(|meridians| {
+                        let surface = &solid.face(meridians.face).surface;
                         let domain = surface.domain();
-                        side_meridians
+                        meridians
                             .at
                             .iter()
                             .step_by(POLE_MERIDIANS / 4)
                             .find_map(|&t| {
-                                let [a, b] = side_params(&domain, side_meridians.side, t);
+                                let [a, b] = meridians.side.params_at(&domain, t);
                                 surface.normal(a, b)
                             })
                     })
                     .or_else(|| {
                         let inward: DVec3 = solid
                             .pole_meridians(id)
-                            .flat_map(|side_meridians| {
-                                side_meridians.tangents.iter().step_by(POLE_MERIDIANS / 4)
+                            .flat_map(|meridians| {
+                                meridians.tangents.iter().step_by(POLE_MERIDIANS / 4)
                             })
                             .map(|t| t.normalize_or_zero())
                             .sum();

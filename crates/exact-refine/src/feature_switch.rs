@@ -2,7 +2,7 @@
 //! onto the bounding edge or vertex when a face parameter reaches its side, and back into an
 //! adjacent face when the objective decreases into it.
 
-use crate::feature_eval::{Body, Loc, LocalFacePoint, side_of, side_params, wrap};
+use crate::feature_eval::{Body, Loc, LocalFacePoint, side_of, wrap};
 use geom_param::{
     Boundary, DVec2, DVec3, EdgeId, EdgeUse, FaceId, FeatureId, FeatureLocation, ParamRange,
     ParamSide, Solid, SurfacePoint,
@@ -440,19 +440,17 @@ pub(crate) fn reenter_untaken(
                     }
                 }
             }
-            for side_meridians in solid.pole_meridians(id) {
-                let domain = solid.face(side_meridians.face).surface.domain();
-                let across = usize::from(matches!(
-                    side_meridians.side,
-                    ParamSide::VMin | ParamSide::VMax
-                ));
-                for ((&t, &tangent), &opposite) in side_meridians
+            for meridians in solid.pole_meridians(id) {
+                let domain = solid.face(meridians.face).surface.domain();
+                let across =
+                    usize::from(matches!(meridians.side, ParamSide::VMin | ParamSide::VMax));
+                for ((&t, &tangent), &opposite) in meridians
                     .at
                     .iter()
-                    .zip(&side_meridians.tangents)
-                    .zip(&side_meridians.opposite)
+                    .zip(&meridians.tangents)
+                    .zip(&meridians.opposite)
                 {
-                    let mut uv = side_params(&domain, side_meridians.side, t);
+                    let mut uv = meridians.side.params_at(&domain, t);
                     // Off a smooth pole only, where the meridian half a turn round leaves in the
                     // opposite direction (a tangent plane); an apex (a cone's tip) is a vertex
                     // of the solid, and its re-entry starts on it as before.
@@ -462,7 +460,7 @@ pub(crate) fn reenter_untaken(
                     if smooth {
                         uv[across] = off_vertex(
                             &domain[across],
-                            side_meridians.side,
+                            meridians.side,
                             uv[across],
                             frame.vector(tangent),
                             pull,
@@ -471,7 +469,7 @@ pub(crate) fn reenter_untaken(
                     offer(
                         tangent,
                         FeatureLocation::Face {
-                            id: side_meridians.face,
+                            id: meridians.face,
                             u: uv[0],
                             v: uv[1],
                         },

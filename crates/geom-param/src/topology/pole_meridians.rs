@@ -9,7 +9,6 @@
 //! computes them once, at first use ([`Solid::pole_meridians`]). (Not the triangle fans the
 //! tessellation puts round a pole.)
 
-use crate::curves::curve::ParamRange;
 use crate::topology::feature::{FaceId, VertexId};
 use crate::topology::solid::{Boundary, ParamSide, Solid};
 use glam::DVec3;
@@ -41,16 +40,6 @@ pub struct PoleMeridians {
     pub opposite: [DVec3; POLE_MERIDIANS],
 }
 
-/// The parameters (u, v) of the point of `side` at running parameter `t`.
-fn side_params(domain: &[ParamRange; 2], side: ParamSide, t: f64) -> [f64; 2] {
-    match side {
-        ParamSide::UMin => [domain[0].min, t],
-        ParamSide::UMax => [domain[0].max, t],
-        ParamSide::VMin => [t, domain[1].min],
-        ParamSide::VMax => [t, domain[1].max],
-    }
-}
-
 /// The meridians of every face side of `solid` that collapses into a vertex, in vertex order.
 pub(crate) fn pole_meridians(solid: &Solid) -> Vec<PoleMeridians> {
     let mut all = Vec::new();
@@ -74,7 +63,7 @@ pub(crate) fn pole_meridians(solid: &Solid) -> Vec<PoleMeridians> {
                 let across_v = matches!(side, ParamSide::VMin | ParamSide::VMax);
                 let range = domain[usize::from(!across_v)];
                 let tangent_at = |t: f64| {
-                    let [u, v] = side_params(&domain, side, t);
+                    let [u, v] = side.params_at(&domain, t);
                     let s = surface.eval(u, v);
                     match side {
                         ParamSide::UMin => s.du,

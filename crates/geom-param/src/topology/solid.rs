@@ -7,7 +7,7 @@
 //! cycle of edges with a p-curve on the face). Every edge lies on exactly two faces
 //! ([`EdgeUse`]); the edge's own parameter t runs along both.
 
-use crate::curves::curve::{Curve, CurvePoint};
+use crate::curves::curve::{Curve, CurvePoint, ParamRange};
 use crate::curves::curve2::Curve2Point;
 use crate::surfaces::surface::{Surface, SurfacePoint};
 use crate::topology::feature::{EdgeId, FaceId, FeatureLocation, VertexId};
@@ -27,6 +27,20 @@ pub enum ParamSide {
     VMin,
     /// v = v_max.
     VMax,
+}
+
+impl ParamSide {
+    /// The face parameters (u, v) of this side's point at running parameter `t` (v on a u
+    /// side, u on a v side), with `domain` the face's surface domain.
+    #[must_use]
+    pub fn params_at(self, domain: &[ParamRange; 2], t: f64) -> [f64; 2] {
+        match self {
+            Self::UMin => [domain[0].min, t],
+            Self::UMax => [domain[0].max, t],
+            Self::VMin => [t, domain[1].min],
+            Self::VMax => [t, domain[1].max],
+        }
+    }
 }
 
 /// What the face meets across one side of its parameter rectangle.

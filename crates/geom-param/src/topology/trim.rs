@@ -385,14 +385,13 @@ impl Trim {
     /// polylines' nearest, polished), as the limit only skips what lies beyond it.
     fn nearest_within(&self, uv: DVec2, limit: f64) -> Option<TrimNearest> {
         let mut best: Option<TrimNearest> = None;
+        // An entry whose box is farther than the limit or the best distance so far, by more
+        // than the rounding of a computed segment distance (a few ε of the coordinates), has no
+        // segment that would be taken; nor has a run of them.
+        let bound =
+            |best: &Option<TrimNearest>| best.as_ref().map_or(limit, |b| b.distance.min(limit));
         for (li, l) in self.loops.iter().enumerate() {
             for (ei, e) in l.entries.iter().enumerate() {
-                // An entry whose box is farther than the limit or the best distance so far, by
-                // more than the rounding of a computed segment distance (a few ε of the
-                // coordinates), has no segment that would be taken; nor has a run of them.
-                let bound = |best: &Option<TrimNearest>| {
-                    best.as_ref().map_or(limit, |bst| bst.distance.min(limit))
-                };
                 if farther(e.bounds, uv, bound(&best)) {
                     continue;
                 }
