@@ -1,7 +1,10 @@
 //! Per-frame cost of coherent queries against cold ones in the same run, on the paper's four
-//! two-contact scenes (fixtures/) at small motion: B rolls back and forth about the first
-//! contact (amplitude 2e-3 rad, 2.5e-5 rad per frame, lifted 2 µm so both contacts stay in the
-//! band). `warm` is [`ContactPipeline::query_coherent`] along the trajectory (a full query
+//! two-contact scenes (fixtures/) at small motion, along four trajectories about the first
+//! contact (point c, normal n, a tangent u): **rolling**, B turned back and forth about n × u
+//! through c (amplitude 2e-3 rad, 2.5e-5 rad per frame), lifted 2 µm so both contacts stay in
+//! the band; **sliding**, moved back and forth along u (amplitude 0.05 mm), lifted 2 µm;
+//! **approaching**, lowered along n from 0.15 mm to 2 µm above the scene's pose; **leaving**,
+//! the reverse (as `cargo xtask coherence`, which tabulates them). `warm` is [`ContactPipeline::query_coherent`] along the trajectory (a full query
 //! every `max_warm_frames` = 64 frames, so the time is the amortised one), `warm-only` the same
 //! with the chain never broken by the frame count (the certificate alone decides), `cold`
 //! [`ContactPipeline::query_into`] with a persistent scratch along the same trajectory. The
@@ -16,7 +19,7 @@ use contact_pipeline::{
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 use fixture_scene::{FixtureScene, load_scene};
-use geom_param::{DPose3, DQuat};
+use geom_param::{DPose3, DQuat, DVec3};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -33,6 +36,47 @@ const FRAMES: usize = 320;
 #[path = "../tests/support/fixture_scene.rs"]
 mod fixture_scene;
 
+/// How B moves (see the module documentation).
+#[derive(Clone, Copy)]
+enum Motion {
+    Rolling,
+    Sliding,
+    Approaching,
+    Leaving,
+}
+
+impl Motion {
+    const ALL: [(Self, &'static str); 4] = [
+        (Self::Rolling, "rolling"),
+        (Self::Sliding, "sliding"),
+        (Self::Approaching, "approaching"),
+        (Self::Leaving, "leaving"),
+    ];
+
+    /// B's pose at frame `k` from its scene pose `pose_b`, the first contact at `c` with
+    /// normal `n`.
+    fn pose(self, k: usize, c: DVec3, n: DVec3, pose_b: DPose3) -> DPose3 {
+        let phase = (std::f64::consts::TAU * k as f64 / FRAMES as f64).sin();
+        let lowered = |from: f64, to: f64| {
+            let lift = from + (to - from) * k as f64 / (FRAMES - 1) as f64;
+            DPose3::from_parts(n * lift, DQuat::IDENTITY) * pose_b
+        };
+        match self {
+            Self::Rolling => {
+                let axis = n.cross(n.any_orthonormal_vector()).normalize();
+                let r = DQuat::from_axis_angle(axis, 2e-3 * phase);
+                DPose3::from_parts(c - r * c + n * 0.002, r) * pose_b
+            }
+            Self::Sliding => {
+                let u = n.any_orthonormal_vector();
+                DPose3::from_parts(u * (0.05 * phase) + n * 0.002, DQuat::IDENTITY) * pose_b
+            }
+            Self::Approaching => lowered(0.15, 0.002),
+            Self::Leaving => lowered(0.002, 0.15),
+        }
+    }
+}
+
 /// A fixture scene and B's trajectory.
 struct Scene {
     pipeline: ContactPipeline,
@@ -42,7 +86,7 @@ struct Scene {
     trajectory: Vec<DPose3>,
 }
 
-fn load(name: &str) -> Scene {
+fn load(name: &str, motion: Motion) -> Scene {
     let FixtureScene {
         pipeline,
         a,
@@ -55,15 +99,7 @@ fn load(name: &str) -> Scene {
         .expect("query");
     assert_eq!(start.contacts.len(), 2, "{name}: two contacts");
     let (c, n) = (start.contacts[0].point_a, start.contacts[0].normal);
-    let u = n.any_orthonormal_vector();
-    let axis = n.cross(u).normalize();
-    let trajectory = (0..FRAMES)
-        .map(|k| {
-            let angle = 2e-3 * (std::f64::consts::TAU * k as f64 / FRAMES as f64).sin();
-            let r = DQuat::from_axis_angle(axis, angle);
-            DPose3::from_parts(c - r * c + n * 0.002, r) * pose_b
-        })
-        .collect();
+    let trajectory = (0..FRAMES).map(|k| motion.pose(k, c, n, pose_b)).collect();
     Scene {
         pipeline,
         a,
@@ -127,9 +163,13 @@ fn census(scene: &Scene, name: &str) {
 }
 
 fn coherence(c: &mut Criterion) {
-    for name in SCENES {
-        let scene = load(name);
-        census(&scene, name);
+    for (name, (motion, motion_name)) in SCENES
+        .into_iter()
+        .flat_map(|name| Motion::ALL.map(|m| (name, m)))
+    {
+        let scene = load(name, motion);
+        let name = format!("{name}/{motion_name}");
+        census(&scene, &name);
         let mut group = c.benchmark_group(format!("coherence/{name}"));
         group
             .warm_up_time(Duration::from_millis(300))

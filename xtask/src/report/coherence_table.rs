@@ -1,32 +1,95 @@
-//! The report's coherence table (section 6) and `cargo xtask coherence`: per paper scene, the
-//! time per frame of coherent queries against cold ones along one trajectory, in the same run.
+//! The report's coherence table (section 6) and `cargo xtask coherence`: per paper scene and
+//! kind of motion, the time per frame of coherent queries against cold ones along one
+//! trajectory, in the same run.
 //!
-//! The trajectory is the one of `cargo bench -p contact-pipeline --bench coherence`: B rolls
-//! back and forth about the scene's first contact (axis normal × tangent through the contact
-//! point, amplitude 2e-3 rad over [`FRAMES`] frames, 2.5e-5 rad per frame at most), lifted
-//! 2 µm along the normal so that both contacts stay in the band. Three ways along it, each
-//! with its own cache and scratch, after one untimed pass: **warm** is
-//! `ContactPipeline::query_coherent` with the default options (a full query at least every 64
-//! frames, so its time is the amortised one), **warm-only** the same with the chain never
-//! broken by the frame count (only the motion certificate starts a full query), **cold**
-//! `ContactPipeline::query_into` with a persistent scratch. Each time is the median over passes
-//! of the mean time per frame of a pass (wall clock, µs).
+//! The trajectories are those of `cargo bench -p contact-pipeline --bench coherence`, each of
+//! [`FRAMES`] frames about the scene's first contact (point c, normal n, a tangent u):
+//! **rolling**, B turned back and forth about the axis n × u through c (amplitude 2e-3 rad,
+//! 2.5e-5 rad per frame at most), lifted 2 µm along n so that both contacts stay in the band;
+//! **sliding**, B moved back and forth along u (amplitude 0.05 mm, 1e-3 mm per frame at most),
+//! lifted 2 µm; **approaching**, B lowered along n from 0.15 mm above the scene's pose (both
+//! contacts outside the band) to 2 µm above it (4.6e-4 mm per frame); **leaving**, the same
+//! reversed. Three ways along each, each with its own cache and scratch, after one untimed
+//! pass: **warm** is `ContactPipeline::query_coherent` with the default options (a full query
+//! at least every 64 frames, so its time is the amortised one), **warm-only** the same with
+//! the chain never broken by the frame count (only the motion certificate starts a full
+//! query), **cold** `ContactPipeline::query_into` with a persistent scratch. Each time is the
+//! median over passes of the mean time per frame of a pass (wall clock, µs).
 
 use super::accuracy_scene::PAPER_SCENES;
 use contact_pipeline::{
     CoherenceOptions, ContactPipeline, FrameKind, PairCache, PairReport, PreparedObject,
     QueryScratch,
 };
-use geom_param::{DPose3, DQuat};
+use geom_param::{DPose3, DQuat, DVec3};
 use std::path::Path;
 use std::time::Instant;
 
 /// Frames of one back-and-forth roll.
 pub const FRAMES: usize = 320;
 
+/// How B moves along a trajectory (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Motion {
+    /// Turned back and forth about an axis through the first contact.
+    Rolling,
+    /// Moved back and forth along the contact's tangent plane.
+    Sliding,
+    /// Lowered along the normal into the band.
+    Approaching,
+    /// Raised along the normal out of the band.
+    Leaving,
+}
+
+impl Motion {
+    /// Every motion, in table order.
+    pub const ALL: [Self; 4] = [
+        Self::Rolling,
+        Self::Sliding,
+        Self::Approaching,
+        Self::Leaving,
+    ];
+
+    /// Its name in the table.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Rolling => "rolling",
+            Self::Sliding => "sliding",
+            Self::Approaching => "approaching",
+            Self::Leaving => "leaving",
+        }
+    }
+
+    /// B's pose at frame `k` of [`FRAMES`], from its pose `pose_b` in a scene whose first
+    /// contact is at `c` with normal `n` (A's frame, which is the world's here).
+    #[must_use]
+    pub fn pose(self, k: usize, c: DVec3, n: DVec3, pose_b: DPose3) -> DPose3 {
+        let phase = (std::f64::consts::TAU * k as f64 / FRAMES as f64).sin();
+        let lowered = |from: f64, to: f64| {
+            let lift = from + (to - from) * k as f64 / (FRAMES - 1) as f64;
+            DPose3::from_parts(n * lift, DQuat::IDENTITY) * pose_b
+        };
+        match self {
+            Self::Rolling => {
+                let axis = n.cross(n.any_orthonormal_vector()).normalize();
+                let r = DQuat::from_axis_angle(axis, 2e-3 * phase);
+                DPose3::from_parts(c - r * c + n * 0.002, r) * pose_b
+            }
+            Self::Sliding => {
+                let u = n.any_orthonormal_vector();
+                DPose3::from_parts(u * (0.05 * phase) + n * 0.002, DQuat::IDENTITY) * pose_b
+            }
+            Self::Approaching => lowered(0.15, 0.002),
+            Self::Leaving => lowered(0.002, 0.15),
+        }
+    }
+}
+
 /// One scene's row.
 struct Row {
     name: &'static str,
+    motion: Motion,
     contacts_per_frame: f64,
     warm_fraction: f64,
     steps_per_warm_contact: f64,
@@ -55,28 +118,31 @@ pub fn coherence_table(root: &Path, passes: usize) -> Result<String, String> {
         None => String::new(),
     };
     text.push_str(
-        "| scene | contacts per frame | warm frames | Newton steps per warm contact | warm (µs per frame) | warm, per contact (µs) | warm-only (µs per frame) | cold (µs per frame) | cold / warm |\n|---|---|---|---|---|---|---|---|---|\n",
+        "| scene | motion | contacts per frame | warm frames | Newton steps per warm contact | warm (µs per frame) | warm, per contact (µs) | warm-only (µs per frame) | cold (µs per frame) | cold / warm |\n|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for name in PAPER_SCENES {
-        let row = measure(root, name, passes)?;
-        let contacts = row.contacts_per_frame.max(1.0);
-        text.push_str(&format!(
-            "| {} | {:.2} | {:.1} % | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1}x |\n",
-            row.name,
-            row.contacts_per_frame,
-            100.0 * row.warm_fraction,
-            row.steps_per_warm_contact,
-            row.warm_us,
-            row.warm_us / contacts,
-            row.warm_only_us,
-            row.cold_us,
-            row.cold_us / row.warm_us
-        ));
+        for motion in Motion::ALL {
+            let row = measure(root, name, motion, passes)?;
+            let contacts = row.contacts_per_frame.max(1.0);
+            text.push_str(&format!(
+                "| {} | {} | {:.2} | {:.1} % | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1}x |\n",
+                row.name,
+                row.motion.name(),
+                row.contacts_per_frame,
+                100.0 * row.warm_fraction,
+                row.steps_per_warm_contact,
+                row.warm_us,
+                row.warm_us / contacts,
+                row.warm_only_us,
+                row.cold_us,
+                row.cold_us / row.warm_us
+            ));
+        }
     }
     Ok(text)
 }
 
-fn measure(root: &Path, name: &'static str, passes: usize) -> Result<Row, String> {
+fn measure(root: &Path, name: &'static str, motion: Motion, passes: usize) -> Result<Row, String> {
     let path = root.join(format!("fixtures/scenes/{name}-two-contacts.json"));
     let scene = contacts::run::prepare_scene(&path).map_err(|e| format!("{name}: {e}"))?;
     let (objects, placed) = (&scene.objects, &scene.scene.objects);
@@ -95,14 +161,7 @@ fn measure(root: &Path, name: &'static str, passes: usize) -> Result<Row, String
         .first()
         .ok_or(format!("{name}: no contact at the scene's pose"))?;
     let (c, n) = (first.point_a, first.normal);
-    let axis = n.cross(n.any_orthonormal_vector()).normalize();
-    let trajectory: Vec<DPose3> = (0..FRAMES)
-        .map(|k| {
-            let angle = 2e-3 * (std::f64::consts::TAU * k as f64 / FRAMES as f64).sin();
-            let r = DQuat::from_axis_angle(axis, angle);
-            DPose3::from_parts(c - r * c + n * 0.002, r) * pose_b
-        })
-        .collect();
+    let trajectory: Vec<DPose3> = (0..FRAMES).map(|k| motion.pose(k, c, n, pose_b)).collect();
     let ways = Ways {
         pipeline,
         a,
@@ -118,6 +177,7 @@ fn measure(root: &Path, name: &'static str, passes: usize) -> Result<Row, String
     let cold_us = ways.cold().map_err(|e| format!("{name}: {e}"))?;
     Ok(Row {
         name,
+        motion,
         contacts_per_frame: census.contacts as f64 / census.frames.max(1) as f64,
         warm_fraction: census.warm_frames as f64 / census.frames.max(1) as f64,
         steps_per_warm_contact: census.warm_steps as f64 / census.warm_contacts.max(1) as f64,
