@@ -290,3 +290,80 @@ fn a_wall_dipping_into_a_fillet_is_one_overlap() {
         "{c:?} {at:?}"
     );
 }
+
+/// jar-goblet 5927988746080172518 of `soak 10000 --seed 12102`, built as a touch at 6.6e-10
+/// mm: the goblet's foot rim (edge 7, a circle) under the jar's flat bottom (face 0, the plane
+/// z = 0). The oracle listed three more "minima" on the same rim at 8.5e-7, 4.4e-6 and 9.1e-6
+/// mm, 0.017 to 0.056 mm along it (missed 3): its walk between them went straight across the
+/// jar's bottom (a polar arc, off the rim's shadow, where the distance climbs to 2.9e-6 mm
+/// between the touch and the first) and so kept them apart; it now also walks along an edge
+/// that holds both points. Truth in closed form: the rim is a circle with centre c, radius R
+/// and axis n (world), whose highest point is at z = c_z + R √(1 − n_z²), the one minimum of
+/// the gap −z; along the rim the gap rises monotonically to either side of it.
+#[test]
+fn a_goblet_rim_under_a_jar_is_one_touch() {
+    let pose_b = pose(
+        [2.3256921890013826, -5.97151840004206, -155.2011943584202],
+        [
+            0.11849707120626765,
+            0.004760679275837118,
+            0.059863754241167404,
+            -0.9911367771284256,
+        ],
+    );
+    let (pipeline, objects) = setup();
+    let (report, oracle) = compared(
+        &objects,
+        &pipeline,
+        ("jar", "goblet"),
+        &pose_b,
+        6.566244301672262e-10,
+    );
+    let goblet = &objects["goblet"].model.solid;
+    let rim_edge = geom_param::EdgeId(7);
+    let rim = |t: f64| pose_b * goblet.eval_edge(rim_edge, t).point;
+    // The circle from three points a third of a turn apart, checked on a fourth.
+    let domain = goblet.edge(rim_edge).curve.domain();
+    assert!(domain.periodic, "{domain:?}");
+    let third = (domain.max - domain.min) / 3.0;
+    let [p0, p1, p2] = [0.0, 1.0, 2.0].map(|k| rim(domain.min + k * third));
+    let centre = (p0 + p1 + p2) / 3.0;
+    let radius = p0.distance(centre);
+    let axis = (p1 - p0).cross(p2 - p0).normalize();
+    let p3 = rim(domain.min + 0.37 * third);
+    assert!(
+        (p3.distance(centre) - radius).abs() < 1e-9 * radius,
+        "not a circle"
+    );
+    assert!(
+        (p3 - centre).dot(axis).abs() < 1e-9 * radius,
+        "not a circle"
+    );
+    let lowest_gap = -(centre.z + radius * (1.0 - axis.z * axis.z).sqrt());
+    let c = report.contacts[0];
+    assert!(
+        (c.distance - lowest_gap).abs() < 1e-12,
+        "{c:?} {lowest_gap:e}"
+    );
+    // Every other accepted point is on the rim, at its gap, on the rim's slope towards the
+    // touch: the gap −z falls monotonically along the rim from the member to the contact.
+    let geom_param::FeatureLocation::Edge { t: t_touch, .. } = c.location_b else {
+        panic!("the touch is on the rim: {c:?}");
+    };
+    assert!(!oracle.members.is_empty(), "{oracle:?}");
+    for m in oracle.members.iter().map(|m| &m.contact) {
+        let geom_param::FeatureLocation::Edge { id, t } = m.location_b else {
+            panic!("a member off the rim: {m:?}");
+        };
+        assert_eq!(id, rim_edge, "{m:?}");
+        assert!((-rim(t).z - m.distance).abs() < 1e-11, "{m:?}");
+        let gaps: Vec<f64> = (0..=64)
+            .map(|k| -rim(t + (t_touch - t) * k as f64 / 64.0).z)
+            .collect();
+        assert!(
+            gaps.windows(2).all(|w| w[1] <= w[0] + 1e-15),
+            "{m:?} {gaps:?}"
+        );
+        assert!(gaps[64] < m.distance - 1e-8, "{m:?} {gaps:?}");
+    }
+}

@@ -14,19 +14,22 @@
 //!
 //! The test (a mountain-pass argument): two minima at distances d_i <= d_j are distinct only if
 //! every path between them rises above d_j by more than the resolution η; a path that does not
-//! proves that j is no separate minimum at resolution η. The path walks one point straight in
-//! the parameters of a face that holds both points of that side (u wrapped the short way
-//! round where periodic, every step inside the face's trim), and the distance along it is the
+//! proves that j is no separate minimum at resolution η. The path walks one point along an edge
+//! that holds both points of that side, or straight in the parameters of a face that holds
+//! both (u wrapped the short way round where periodic, every step inside the face's trim),
+//! on either solid, and the distance along it is the
 //! signed distance of the walking point to the other solid (its foot followed from step to
 //! step, [`penetration::signed_distance`]), which is never below the distance between the
-//! two surfaces along the path of pairs (point, foot). Minima on different faces of both solids
-//! are not compared (kept apart), nor are they when a step's projection does not converge.
+//! two surfaces along the path of pairs (point, foot). Minima with neither a common edge nor a
+//! common face on either solid are not compared (kept apart), nor are they when a step's
+//! projection does not converge.
 
+use crate::held::Held;
 use crate::penetration;
 use crate::polish::{Limits, Pair};
 use crate::posed::PosedSolid;
 use crate::report::{OracleContact, RegionMember};
-use geom_param::FaceId;
+use geom_param::{FaceId, FeatureLocation};
 
 /// Steps of a connecting path.
 const PATH_STEPS: usize = 64;
@@ -58,9 +61,12 @@ pub(crate) fn group(
     (kept, members)
 }
 
-/// Whether the straight path from `lower` to `higher` (on a face holding both points of one
-/// side) keeps the distance at or below `higher.distance + resolution`, with the path's ends
-/// reproducing both distances to `resolution`.
+/// Whether a path from `lower` to `higher` keeps the distance at or below
+/// `higher.distance + resolution`, with the path's ends reproducing both distances to
+/// `resolution`. The paths tried, on either solid: along an edge that holds both points of that
+/// side (a rim touching a plane has its flank on the rim, where a straight path in a face's
+/// parameters cuts across and climbs), and straight in the parameters of a face that holds
+/// both. One path that stays low is enough.
 fn joined(
     a: &PosedSolid,
     b: &PosedSolid,
@@ -69,42 +75,114 @@ fn joined(
     limits: &Limits,
     resolution: f64,
 ) -> bool {
-    let on_a = lower.face_a == higher.face_a;
-    if !on_a && lower.face_b != higher.face_b {
-        return false;
+    [true, false].into_iter().any(|on_a| {
+        let (x, y) = if on_a { (a, b) } else { (b, a) };
+        let ends = [lower, higher].map(|c| Ends::of(c, on_a));
+        let along_edge =
+            edge_path(x, &ends).is_some_and(|path| walk(x, y, &ends, path, limits, resolution));
+        along_edge
+            || face_path(x, &ends).is_some_and(|path| walk(x, y, &ends, path, limits, resolution))
+    })
+}
+
+/// One contact seen from the walking side x: x's face, parameters and feature, the other
+/// side's face and parameters (where the foot starts), and the contact's distance (mm).
+struct Ends {
+    face: FaceId,
+    params: [f64; 2],
+    location: FeatureLocation,
+    foot_face: FaceId,
+    foot: [f64; 2],
+    distance: f64,
+}
+
+impl Ends {
+    fn of(c: &OracleContact, on_a: bool) -> Self {
+        if on_a {
+            Self {
+                face: c.face_a,
+                params: c.params_a,
+                location: c.location_a,
+                foot_face: c.face_b,
+                foot: c.params_b,
+                distance: c.distance,
+            }
+        } else {
+            Self {
+                face: c.face_b,
+                params: c.params_b,
+                location: c.location_b,
+                foot_face: c.face_a,
+                foot: c.params_a,
+                distance: c.distance,
+            }
+        }
     }
-    // The walking side x and the other side y; the pair is (x's point, y's foot).
-    let (x, y, face, from, to, foot_face, foot) = if on_a {
-        (
-            a,
-            b,
-            lower.face_a,
-            lower.params_a,
-            higher.params_a,
-            lower.face_b,
-            lower.params_b,
-        )
-    } else {
-        (
-            b,
-            a,
-            lower.face_b,
-            lower.params_b,
-            higher.params_b,
-            lower.face_a,
-            lower.params_a,
-        )
+}
+
+/// A path's point at fraction s in [0, 1]: face, parameters and feature, `None` where it
+/// leaves the face's region.
+type Path<'p> = Box<dyn Fn(f64) -> Option<(FaceId, [f64; 2], Held)> + 'p>;
+
+/// Along the edge that holds both points, its t running the short way round a closed edge.
+fn edge_path<'p>(x: &'p PosedSolid, ends: &[Ends; 2]) -> Option<Path<'p>> {
+    let (FeatureLocation::Edge { id: edge, t: from }, FeatureLocation::Edge { id: to_edge, t: to }) =
+        (ends[0].location, ends[1].location)
+    else {
+        return None;
     };
-    let step = parameter_step(x, face, from, to);
-    let mut pair = Pair::faces(face, from, foot_face, foot);
+    if edge != to_edge {
+        return None;
+    }
+    let domain = x.solid.edge(edge).curve.domain();
+    let mut step = to - from;
+    if domain.periodic {
+        let span = domain.max - domain.min;
+        step -= span * (step / span).round();
+    }
+    let use_index = x.use_on(edge, ends[0].face);
+    let use_ = x.solid.edge(edge).uses[use_index];
+    Some(Box::new(move |s| {
+        let t = domain.normalize(from + s * step);
+        let held = Held::Edge { edge, t, use_index };
+        Some((use_.face, x.use_params(&use_, t), held))
+    }))
+}
+
+/// Straight in the parameters of the face that holds both points (u wrapped the short way
+/// round where periodic, every point inside the face's trim).
+fn face_path<'p>(x: &'p PosedSolid, ends: &[Ends; 2]) -> Option<Path<'p>> {
+    let face = ends[0].face;
+    if ends[1].face != face {
+        return None;
+    }
+    let from = ends[0].params;
+    let step = parameter_step(x, face, from, ends[1].params);
+    Some(Box::new(move |s| {
+        let uv = x.normalize(face, [from[0] + s * step[0], from[1] + s * step[1]]);
+        x.inside(face, uv).then_some((face, uv, Held::Face))
+    }))
+}
+
+/// Walks x's point along `path`, its foot on y followed from step to step: true when the
+/// signed distance at the path's ends reproduces both contacts' distances and never rises
+/// above the higher one by more than `resolution`.
+fn walk(
+    x: &PosedSolid,
+    y: &PosedSolid,
+    ends: &[Ends; 2],
+    path: Path,
+    limits: &Limits,
+    resolution: f64,
+) -> bool {
+    let [lower, higher] = ends;
+    let mut pair = Pair::faces(lower.face, lower.params, lower.foot_face, lower.foot);
     let mut highest = f64::NEG_INFINITY;
     for k in 0..=PATH_STEPS {
-        let t = k as f64 / PATH_STEPS as f64;
-        let uv = x.normalize(face, [from[0] + t * step[0], from[1] + t * step[1]]);
-        if !x.inside(face, uv) {
+        let Some((face, uv, held)) = path(k as f64 / PATH_STEPS as f64) else {
             return false;
-        }
-        (pair.fa, pair.a) = (face, uv);
+        };
+        (pair.fa, pair.a, pair.held_a) = (face, uv, held);
         let Some((value, foot)) = penetration::signed_distance(x, y, pair, limits) else {
             return false;
         };
