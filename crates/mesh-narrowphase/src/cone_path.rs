@@ -12,7 +12,7 @@ use crate::normal_cone::{CriticalKinds, NormalCone};
 use crate::patch_tree::{PatchLeaf, PatchNode, PatchTree, Piece};
 use crate::query_side::Side;
 use crate::triangle_distance::{TrianglePoint, closest_between_triangles, closest_on_triangle};
-use geom_param::{DPose3, FeatureLocation, Seed, SeedPoint};
+use geom_param::{DPose3, EdgeConvexity, EdgeId, FeatureLocation, Seed, SeedPoint};
 use glam::{DMat2, DVec2, DVec3};
 use std::collections::HashMap;
 
@@ -260,9 +260,18 @@ pub(crate) fn cone_path(
                     mesh_local_minimum((side_a, side_b), pose_ab, f, allowance, (rings_a, rings_b))
                 })
         };
-        let duplicate = kept
-            .iter()
-            .any(|&k| near(&found[k]) && !kept_apart(&found[k]));
+        // A candidate on a ridge that the mesh cannot tell from a neighbour off it (neither
+        // certainly lower) may be a minimum of its own: the edge's, beside the face's.
+        let ridges_f = ridges(f, (side_a, side_b));
+        let off_its_ridge = |g: &Found| {
+            let ridges_g = ridges(g, (side_a, side_b));
+            let apart = (0..2).any(|s| ridges_f[s].is_some() && ridges_f[s] != ridges_g[s]);
+            apart && !certainly_lower(g, f)
+        };
+        let duplicate = kept.iter().any(|&k| {
+            let g = &found[k];
+            near(g) && !off_its_ridge(g) && !kept_apart(g)
+        });
         if duplicate || superseded(&found[..i], f, &mut kept_apart) {
             continue;
         }
@@ -315,6 +324,52 @@ fn superseded(earlier: &[Found], f: &Found, mut kept_apart: impl FnMut(&Found) -
             && g.point_b.distance(f.point_b) <= r
             && !kept_apart(g)
     })
+}
+
+/// The ridges (convex edges) that a leaf pair's candidate's mesh points lie on, A's and B's:
+/// `None` for a point on a face, on a smooth or concave edge or at a vertex, and for other
+/// candidates (certified pairs lie on smooth nodes; an apex is a vertex).
+///
+/// Why: the radius rule takes candidates within a leaf's ball for one minimum, and a leaf
+/// spans the mesh's chordal error. A pencil's tip (a cone of radius 1 mm meeting the taper at
+/// a ridge, meshed with 8 segments, chordal error 0.077 mm) in a goblet's bowl has three
+/// minima within 1.1 mm: the apex at 0.0415 mm, the ridge at 0.0692 and the taper at 0.0661.
+/// The ridge's candidate (mesh distance 0.124) was merged into one on the tip cone 0.9 mm away
+/// (0.075, not certainly lower), whose Newton run went to the apex, and the ridge's minimum
+/// was missed. On a ridge the distance has minima of its own (the edge's, point-curve and
+/// curve-surface in the paper's list), which a face's seed beside it does not reach.
+fn ridges(f: &Found, (side_a, side_b): (&Side<'_>, &Side<'_>)) -> [Option<EdgeId>; 2] {
+    let Some(leaf) = f.leaf else {
+        return [None, None];
+    };
+    [
+        ridge_at(side_a, leaf.triangles[0], leaf.barycentric[0]),
+        ridge_at(side_b, leaf.triangles[1], leaf.barycentric[1]),
+    ]
+}
+
+/// The convex edge that the point with `barycentric` coordinates in mesh triangle `triangle`
+/// lies on: every corner that carries weight is a mesh vertex on that edge (so the point is on
+/// the triangle's side along the edge, or at its corner there).
+fn ridge_at(side: &Side<'_>, triangle: u32, barycentric: [f64; 3]) -> Option<EdgeId> {
+    const ZERO: f64 = 1e-12;
+    let corners = side.mesh.triangles.get(triangle as usize)?;
+    let mut on = None;
+    for (&vertex, &weight) in corners.iter().zip(&barycentric) {
+        if weight <= ZERO {
+            continue;
+        }
+        let FeatureLocation::Edge { id, .. } = *side.mesh.vertex_locations.get(vertex as usize)?
+        else {
+            return None;
+        };
+        if on.is_some_and(|e| e != id) {
+            return None;
+        }
+        on = Some(id);
+    }
+    let convexity = side.object.solid.edges.get(on?.0 as usize)?.convexity;
+    on.filter(|_| convexity == EdgeConvexity::Convex)
 }
 
 /// Whether leaf pairs' candidates `g` and `f` have mesh distances that put `g` lower by more
