@@ -1208,3 +1208,101 @@ fn crossing_rims_moved_past_delta1_are_a_penetration() {
         );
     }
 }
+
+/// bowl-bowl 7960296049327045656 of `soak 10000 --seed 13102` (flip property): a contact at
+/// 0.0676 mm between A's fillet (face 1, a torus) and B's conical wall (face 2), moved along
+/// its normal to delta1 ± eps. The fillet meets A's own conical wall at a smooth edge (edge 1)
+/// 0.05 mm from the witness. At delta1 + eps the nested penetration solve stopped on that edge,
+/// 3.6e-4 mm deep, on a step below what the coordinates resolve, and ended there without the
+/// re-entry test its stationary end makes (the depth still rose into the fillet): the pair was
+/// a contact at the wrong depth, and at delta1 − eps a contact instead of a penetration. A
+/// vanishing step now ends through the same re-entry test.
+///
+/// Truth, independent of the stages: translating B along the contact's normal keeps the
+/// critical pair at exactly the moved distance (delta1 ± eps) with the same point on A, and
+/// the minimum distance is 1-Lipschitz in the translation; and the oracle's deepest pair.
+#[test]
+fn a_witness_beside_a_smooth_edge_flips_at_delta1() {
+    let (pipeline, objects) = setup();
+    let bowl = &objects["bowl"];
+    let pose_b = pose(
+        [-16.558287317964847, -61.60382738531723, -11.620335312058309],
+        [
+            0.8599251727231144,
+            -0.29185360191269866,
+            0.4031122984725624,
+            -0.1133606950749425,
+        ],
+    );
+    let mut scratch = QueryScratch::default();
+    let base = query(
+        &pipeline,
+        bowl,
+        &DPose3::IDENTITY,
+        bowl,
+        &pose_b,
+        &mut scratch,
+    );
+    let c = *base
+        .contacts
+        .iter()
+        .min_by(|x, y| x.distance.total_cmp(&y.distance))
+        .expect("the built contact");
+    assert!((c.distance - 0.067_637_5).abs() < 1e-6, "{c:?}");
+    let delta1 = pipeline.options().delta1;
+    let eps = 4.5e-8;
+    let shift = |s: f64| DPose3 {
+        rotation: pose_b.rotation,
+        translation: pose_b.translation + c.normal * s,
+    };
+    let to_delta1 = delta1 - c.distance;
+    let kept = shift(to_delta1 + eps);
+    let inside = query(
+        &pipeline,
+        bowl,
+        &DPose3::IDENTITY,
+        bowl,
+        &kept,
+        &mut QueryScratch::default(),
+    );
+    assert_eq!(inside.state, PairState::Contact, "{inside:?}");
+    let moved = inside
+        .contacts
+        .iter()
+        .min_by(|x, y| x.distance.total_cmp(&y.distance))
+        .expect("a contact");
+    assert!((moved.distance - (delta1 + eps)).abs() < 1e-9, "{moved:?}");
+    assert!(moved.point_a.distance(c.point_a) < 1e-6, "{moved:?} {c:?}");
+    assert!(
+        matches!(
+            moved.location_a,
+            FeatureLocation::Face { id: FaceId(1), .. }
+        ),
+        "{moved:?}"
+    );
+    let oracle = xtask::soak::oracle_check::oracle_report(
+        &bowl.model.solid,
+        &bowl.model.solid,
+        &kept,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
+    let deepest = oracle
+        .contacts
+        .iter()
+        .map(|o| o.distance)
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        (deepest - moved.distance).abs() < 1e-9,
+        "{deepest} {moved:?}"
+    );
+    let beyond = query(
+        &pipeline,
+        bowl,
+        &DPose3::IDENTITY,
+        bowl,
+        &shift(to_delta1 - eps),
+        &mut QueryScratch::default(),
+    );
+    assert_eq!(beyond.state, PairState::Penetration, "{beyond:?}");
+}
