@@ -1306,3 +1306,91 @@ fn a_witness_beside_a_smooth_edge_flips_at_delta1() {
     );
     assert_eq!(beyond.state, PairState::Penetration, "{beyond:?}");
 }
+
+/// vase-paperweight 1687297597018891653 of `soak 10000 --seed 13103` (flip property), built
+/// as a touch at 1.8e-10 mm: the vase's bottom rim (edge 0) on the paperweight's face 3. At an
+/// exact touch the gap is quartic in the offset along the rim and Newton stops short: the
+/// contact came out at 6.45e-9 mm, 4.0e-4 mm along the rim from the touch, with an error
+/// estimate of 5.7e-9 mm, below its actual error of 6.3e-9. The flip moved B by that distance
+/// and found the pair 6.3e-9 mm deeper than the estimate allowed. The estimate ½κδ² used the
+/// joint-parameter eigenvalue for κ, half of the gap's arc-length curvature when both points
+/// slide together; it now uses the gap curvature it reports.
+///
+/// Truth, independent of the stages: the oracle's touch distance; the contact's error against
+/// it must lie within its estimate, and the flip must hold.
+#[test]
+fn a_rim_touch_error_is_within_its_estimate() {
+    let (pipeline, objects) = setup();
+    let (vase, paperweight) = (&objects["vase"], &objects["paperweight"]);
+    let pose_b = pose(
+        [-1.0821515002942477, -47.81061496562876, -28.681096658818316],
+        [
+            0.31338689208287124,
+            -0.04099422902137677,
+            -0.30998370091971095,
+            0.896670638652622,
+        ],
+    );
+    let mut scratch = QueryScratch::default();
+    let report = query(
+        &pipeline,
+        vase,
+        &DPose3::IDENTITY,
+        paperweight,
+        &pose_b,
+        &mut scratch,
+    );
+    assert_eq!(report.state, PairState::Contact, "{report:?}");
+    let c = report.contacts[0];
+    let oracle = xtask::soak::oracle_check::oracle_report(
+        &vase.model.solid,
+        &paperweight.model.solid,
+        &pose_b,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
+    let truth = oracle
+        .contacts
+        .iter()
+        .map(|o| o.distance)
+        .fold(f64::INFINITY, f64::min);
+    assert!(truth.abs() < 1e-9, "{oracle:?}");
+    let error = (c.distance - truth).abs();
+    assert!(
+        error <= c.diagnostics.error_estimate,
+        "error {error:e} above the estimate {:e}",
+        c.diagnostics.error_estimate
+    );
+    // The flip: moved along the normal to delta1 ± eps (eps from the estimate, as the soak).
+    let delta1 = pipeline.options().delta1;
+    let eps = 100.0 * c.diagnostics.error_estimate;
+    let shift = |s: f64| DPose3 {
+        rotation: pose_b.rotation,
+        translation: pose_b.translation + c.normal * s,
+    };
+    let to_delta1 = delta1 - c.distance;
+    let fresh = |pose: &DPose3| {
+        let mut scratch = QueryScratch::default();
+        query(
+            &pipeline,
+            vase,
+            &DPose3::IDENTITY,
+            paperweight,
+            pose,
+            &mut scratch,
+        )
+    };
+    let inside = fresh(&shift(to_delta1 + eps));
+    assert_eq!(inside.state, PairState::Contact, "{inside:?}");
+    let deepest = inside
+        .contacts
+        .iter()
+        .map(|k| k.distance)
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        (deepest - (delta1 + eps)).abs() <= c.diagnostics.error_estimate,
+        "{deepest:e} against {:e}",
+        delta1 + eps
+    );
+    assert_eq!(fresh(&shift(to_delta1 - eps)).state, PairState::Penetration);
+}
