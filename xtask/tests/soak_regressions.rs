@@ -1394,3 +1394,82 @@ fn a_rim_touch_error_is_within_its_estimate() {
     );
     assert_eq!(fresh(&shift(to_delta1 - eps)).state, PairState::Penetration);
 }
+
+/// jar-pencil 6447751408969511474 of `soak 10000 --seed 13102` (generator: the touch's
+/// bisection ended separated on both sides of a jump). The pencil's tip cone touches the jar's
+/// wall (face 2) at 0.0493 mm, 0.056 mm below the apex (v = 0.984), where the generator is
+/// 1.7e-3 rad from the wall's tangent plane, so the apex is only 4.7e-5 mm farther. The one
+/// seed is at the apex, and every pair solve crept within 6e-9 of it to its iteration limit:
+/// next to the apex the running parameter u is no coordinate (the scaled Hessian's entry is
+/// |d| / r ~ 1e7), it jumped across the best meridian every step and held the step along the
+/// meridian back. The step's model now freezes a face parameter whose speed is below 1e-6 of
+/// the other's (`State::pole_frozen`).
+///
+/// Truth, independent of the stages: the oracle's minimum, and the invariant of a
+/// face-face minimum (the connecting vector along both faces' normals).
+#[test]
+fn a_minimum_beside_an_apex_is_reached_from_the_apex() {
+    let (pipeline, objects) = setup();
+    let (jar, pencil) = (&objects["jar"], &objects["pencil"]);
+    let pose_b = pose(
+        [175.40253830886553, 68.1199828390814, 79.85735268495897],
+        [
+            -0.05759153870529414,
+            -0.7567314986953496,
+            0.17143751452403866,
+            0.6282116141601226,
+        ],
+    );
+    let mut scratch = QueryScratch::default();
+    let report = query(
+        &pipeline,
+        jar,
+        &DPose3::IDENTITY,
+        pencil,
+        &pose_b,
+        &mut scratch,
+    );
+    assert_eq!(report.state, PairState::Contact, "{report:?}");
+    let c = report.contacts[0];
+    let oracle = xtask::soak::oracle_check::oracle_report(
+        &jar.model.solid,
+        &pencil.model.solid,
+        &pose_b,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
+    let truth = oracle.contacts.first().expect("the oracle's minimum");
+    assert!(
+        (c.distance - truth.distance).abs() < 1e-12,
+        "{c:?} {truth:?}"
+    );
+    assert!(c.point_b.distance(truth.point_b) < 1e-6, "{c:?} {truth:?}");
+    let (
+        FeatureLocation::Face {
+            id: fa,
+            u: ua,
+            v: va,
+        },
+        FeatureLocation::Face { id: fb, u, v },
+    ) = (c.location_a, c.location_b)
+    else {
+        panic!("a face-face minimum: {c:?}");
+    };
+    assert_eq!(fb, FaceId(8), "{c:?}");
+    let w = (c.point_b - c.point_a).normalize();
+    let na = jar
+        .model
+        .solid
+        .eval_face(fa, ua, va)
+        .cross_normal()
+        .expect("a regular point");
+    let nb = pose_b.rotation
+        * pencil
+            .model
+            .solid
+            .eval_face(fb, u, v)
+            .cross_normal()
+            .expect("a regular point");
+    assert!(w.dot(na) > 1.0 - 1e-12, "{w:?} {na:?}");
+    assert!(w.dot(-nb) > 1.0 - 1e-12, "{w:?} {nb:?}");
+}
