@@ -16,7 +16,8 @@
 //! every path between them rises above d_j by more than the resolution η; a path that does not
 //! proves that j is no separate minimum at resolution η. The path walks one point along an edge
 //! that holds both points of that side, or straight in the parameters of a face that holds
-//! both (u wrapped the short way round where periodic, every step inside the face's trim),
+//! both (a point on an edge is on both its faces; u wrapped the short way round where periodic,
+//! every step inside the face's trim),
 //! on either solid, and the distance along it is the
 //! signed distance of the walking point to the other solid (its foot followed from step to
 //! step, [`penetration::signed_distance`]), which is never below the distance between the
@@ -81,7 +82,9 @@ fn joined(
         let along_edge =
             edge_path(x, &ends).is_some_and(|path| walk(x, y, &ends, path, limits, resolution));
         along_edge
-            || face_path(x, &ends).is_some_and(|path| walk(x, y, &ends, path, limits, resolution))
+            || face_paths(x, &ends)
+                .into_iter()
+                .any(|path| walk(x, y, &ends, path, limits, resolution))
     })
 }
 
@@ -149,19 +152,39 @@ fn edge_path<'p>(x: &'p PosedSolid, ends: &[Ends; 2]) -> Option<Path<'p>> {
     }))
 }
 
-/// Straight in the parameters of the face that holds both points (u wrapped the short way
-/// round where periodic, every point inside the face's trim).
-fn face_path<'p>(x: &'p PosedSolid, ends: &[Ends; 2]) -> Option<Path<'p>> {
-    let face = ends[0].face;
-    if ends[1].face != face {
-        return None;
+/// Straight in the parameters of each face that holds both points (u wrapped the short way
+/// round where periodic, every point inside the face's trim). A point on an edge is on both of
+/// the edge's faces (at the use's parameters): a touch's flank point that the polish left on
+/// a smooth edge (a goblet foot's flat bottom meeting its bead) shares the bead with the touch
+/// only that way.
+fn face_paths<'p>(x: &'p PosedSolid, ends: &[Ends; 2]) -> Vec<Path<'p>> {
+    let [from_faces, to_faces] = ends.each_ref().map(|e| faces_holding(x, e));
+    let mut paths: Vec<Path<'p>> = Vec::new();
+    for &(face, from) in &from_faces {
+        let Some(&(_, to)) = to_faces.iter().find(|(f, _)| *f == face) else {
+            continue;
+        };
+        let step = parameter_step(x, face, from, to);
+        paths.push(Box::new(move |s| {
+            let uv = x.normalize(face, [from[0] + s * step[0], from[1] + s * step[1]]);
+            x.inside(face, uv).then_some((face, uv, Held::Face))
+        }));
     }
-    let from = ends[0].params;
-    let step = parameter_step(x, face, from, ends[1].params);
-    Some(Box::new(move |s| {
-        let uv = x.normalize(face, [from[0] + s * step[0], from[1] + s * step[1]]);
-        x.inside(face, uv).then_some((face, uv, Held::Face))
-    }))
+    paths
+}
+
+/// The faces a contact's point of side x lies on, with its parameters on each: its own face,
+/// and on an edge the edge's other face too.
+fn faces_holding(x: &PosedSolid, end: &Ends) -> Vec<(FaceId, [f64; 2])> {
+    let mut faces = vec![(end.face, end.params)];
+    if let FeatureLocation::Edge { id, t } = end.location {
+        for use_ in &x.solid.edge(id).uses {
+            if use_.face != end.face {
+                faces.push((use_.face, x.use_params(use_, t)));
+            }
+        }
+    }
+    faces
 }
 
 /// Walks x's point along `path`, its foot on y followed from step to step: true when the
