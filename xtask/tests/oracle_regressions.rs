@@ -417,3 +417,88 @@ fn a_goblet_foot_rim_over_a_jar_lid_is_one_region() {
     assert_eq!(report.contacts.len(), 1, "{report:?}");
     assert!((report.contacts[0].distance - truth.distance).abs() < 1e-9);
 }
+
+/// `soak 10000 --seed 13108`, pencil-goblet 3730177810009156855 (counted false): the goblet's
+/// bead (face 1, a torus of tube radius 3 about (r, z) = (35, 3) in the goblet's frame) touches
+/// the pencil's ferrule edge (r = 3.6, z = 14) at 9.6e-10 mm and is 0.0992 mm from the
+/// pencil's body cylinder (face 6, r = 3.5, from z = 14) 0.08 mm above the step. The oracle
+/// dropped that minimum because the ferrule's edge is nearer (0.081 mm) to the bead's point:
+/// its rule took any nearer part of a surface for material between the points. The segment
+/// between them crosses neither solid, and a nearer part now disproves a separated minimum
+/// only where the segment passes behind it. Truth in closed form: around the pencil's point
+/// the distance to the bead (torus distance) rises in every direction on the cylinder and is
+/// higher at the step's valley edge below; the segment runs at z > 14 with r > 3.5 (outside
+/// the pencil) and outside the torus.
+#[test]
+fn a_body_beside_a_ferrule_step_keeps_its_minimum() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [
+            -19.883783301135118,
+            -15.170807248665385,
+            -15.041345344807205,
+        ],
+        [
+            0.41582514669879345,
+            0.31453301776505915,
+            -0.6113613333457829,
+            0.5953114715829004,
+        ],
+    );
+    let (pencil, goblet) = (&objects["pencil"], &objects["goblet"]);
+    let inverse = pose_b.inverse();
+    let to_bead = |p: DVec3| {
+        let g = inverse * p;
+        (g.truncate().length() - 35.0).hypot(g.z - 3.0) - 3.0
+    };
+    let oracle = oracle_report(
+        &pencil.model.solid,
+        &goblet.model.solid,
+        &pose_b,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
+    let body = oracle
+        .contacts
+        .iter()
+        .find(|c| matches!(c.location_a, FeatureLocation::Face { id: FaceId(6), .. }))
+        .unwrap_or_else(|| panic!("the body's minimum: {oracle:?}"));
+    assert!((body.distance - 0.099_208_99).abs() < 1e-7, "{body:?}");
+    assert!(
+        (to_bead(body.point_a) - body.distance).abs() < 1e-9,
+        "{body:?}"
+    );
+    let FeatureLocation::Face { u, v, .. } = body.location_a else {
+        unreachable!()
+    };
+    let cylinder = &pencil.model.solid;
+    let at = |du: f64, dv: f64| to_bead(cylinder.eval_face(FaceId(6), u + du, v + dv).point);
+    for (du, dv) in [(0.003, 0.0), (-0.003, 0.0), (0.0, 3e-4), (0.0, -3e-4)] {
+        assert!(at(du, dv) > body.distance, "({du}, {dv}): {}", at(du, dv));
+    }
+    assert!(at(0.0, -v) > body.distance, "the step's valley edge");
+    for k in 1..16 {
+        let x = body.point_a.lerp(body.point_b, f64::from(k) / 16.0);
+        assert!(
+            x.z > 14.0 && x.truncate().length() > 3.5,
+            "{x:?} in the pencil"
+        );
+        assert!(to_bead(x) > 0.0, "{x:?} in the bead");
+    }
+    let report = pipeline
+        .query(
+            pencil,
+            &DPose3::IDENTITY,
+            goblet,
+            &pose_b,
+            &mut QueryScratch::default(),
+        )
+        .expect("unit quaternion");
+    assert!(
+        report
+            .contacts
+            .iter()
+            .any(|c| (c.distance - body.distance).abs() < 1e-9),
+        "{report:?}"
+    );
+}

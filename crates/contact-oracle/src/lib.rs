@@ -32,12 +32,13 @@
 //!    witness, polished by plain Newton on ∇f = 0; from both sides (`penetration`). A witness
 //!    must be a pair of mutually nearest boundary points: one with a sample of either solid
 //!    nearer to the other's point than their distance is a depth through the material and is
-//!    dropped, as minima are below. The
+//!    dropped (a separated minimum only where its segment passes behind that nearer part,
+//!    `found::separated_through_material`). The
 //!    descent moves over trims, edges and vertices as the polish does (not across the sides
 //!    of a face without trim onto an edge shared with another such face), so a witness may lie
 //!    inside a trimmed face, on an edge or at a corner.
-//! 5. Regions (`regions`): an accepted point joined to a lower one by a straight path on a
-//!    face holding both points of one side, along which the signed distance of the walking
+//! 5. Regions (`regions`): an accepted point joined to a lower one by a path along an edge or
+//!    straight on a face holding both points of one side, along which the signed distance of the walking
 //!    point to the other solid never exceeds the higher one's by more than 5 x tolerance, is no
 //!    separate minimum: it is listed as a member of the lower one's region
 //!    ([`OracleReport::members`]), which is reported once. This is what makes a continuous
@@ -54,7 +55,9 @@
 //! is short (not merely the damped one: next to a shallow crossing the residual is small while
 //! f drops to zero a Newton step away); a minimum is dropped when either point has a nearer
 //! sample of the other solid than the pair's distance (a distance measured through a wall,
-//! past a nearer part of the surface); a witness whose Newton polish leaves the descent's depth (an apex
+//! past a nearer part of the surface), a separated one only when its segment passes behind
+//! that nearer part (a part beside the segment, not across it, leaves the minimum standing);
+//! a witness whose Newton polish leaves the descent's depth (an apex
 //! polished onto the crossing curve) is kept at the descent's own pair; two coinciding points
 //! are a touch (a contact at distance 0), not a crossing, when some direction lies in A's
 //! normal cone with its opposite in B's (a face's cone is its normal, an edge's the wedge of

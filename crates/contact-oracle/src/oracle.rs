@@ -3,7 +3,7 @@
 
 use crate::cross_check::compare;
 use crate::error::OracleError;
-use crate::found::{contact, merge, through_material};
+use crate::found::{contact, merge, separated_through_material, through_material};
 use crate::held::Held;
 use crate::kdtree::KdTree;
 use crate::local_minima::{self, NEIGHBOURHOOD, Outcome};
@@ -161,7 +161,12 @@ fn run(
                 };
                 let p = local_minima::deeper_corner(a, b, *p, &limits, signed);
                 let negative = is_negative(a, &p, options.tolerance);
-                if through_material(&p.eval, &ta, &tb, options.tolerance) {
+                let through = if negative {
+                    through_material(&p.eval, &ta, &tb, options.tolerance)
+                } else {
+                    separated_through_material((a, b), &p.pair, (&ta, &tb), (&sa, &sb), &limits)
+                };
+                if through {
                     continue;
                 }
                 let c = to_contact(a, b, &p, negative, options.tolerance);
