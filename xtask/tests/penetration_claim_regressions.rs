@@ -351,9 +351,11 @@ fn a_goblet_rim_inside_a_tube_below_its_end_is_a_penetration() {
 /// pencil's point outer and ascends its depth in the goblet instead, to a ferrule point level
 /// with the goblet's point 0.159 mm away, which the witness check rejects as measured through
 /// the goblet's wall; every seed ends there, and the contacts found elsewhere make the pair a
-/// contact. What it needs: the goblet's point outer with the pencil's projection allowed to
-/// stay on a concave edge (its depth |d| there, the direction from the edge as its normal),
-/// reached when a witness is rejected as through material.
+/// contact. Tried (session 13, not kept): the goblet's point outer from the oracle's own pair,
+/// the pencil's projection allowed to stay on the concave edge (depth |d| there). The ascent
+/// leaves the pair at once (0.061 to 0.066 mm), and the local projection then follows the
+/// annulus to a 1.8 mm "depth" against a part of the boundary that is not the nearest: the
+/// witness needs the global nearest boundary during the ascent.
 ///
 /// Truth in closed form: the oracle's deepest point of the goblet is inside the pencil (ray
 /// parity with the pencil's mesh, and r < 3.6 below z = 14), and its distance to the pencil's
