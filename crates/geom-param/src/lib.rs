@@ -92,7 +92,7 @@ pub use topology::convexity::{
     classify_convexity, classify_edge, classify_face, classify_joint, classify_revolved_face,
 };
 pub use topology::feature::{ComponentId, EdgeId, FaceId, FeatureId, FeatureLocation, VertexId};
-pub use topology::pole_meridians::{POLE_MERIDIANS, PoleMeridians};
+pub use topology::pole_meridians::{POLE_MERIDIANS, PoleMeridians, meridian_tangent};
 pub use topology::solid::{
     Boundary, Edge, EdgeConvexity, EdgeOn, EdgeUse, Face, FaceConvexity, ParamSide, Solid, Vertex,
 };

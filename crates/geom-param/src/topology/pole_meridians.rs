@@ -10,7 +10,7 @@
 //! tessellation puts round a pole.)
 
 use crate::topology::feature::{FaceId, VertexId};
-use crate::topology::solid::{Boundary, ParamSide, Solid};
+use crate::topology::solid::{Boundary, Face, ParamSide, Solid};
 use glam::DVec3;
 
 /// Meridians sampled in a [`PoleMeridians`]: evenly spaced over the side, from its
@@ -40,6 +40,23 @@ pub struct PoleMeridians {
     pub opposite: [DVec3; POLE_MERIDIANS],
 }
 
+/// The derivative of `face` across its side `side` at running parameter `t`, turned to point
+/// into the face (∂S/∂u on u_min, −∂S/∂u on u_max, and so on; not normalised): where the side
+/// collapses into a vertex, the direction of the meridian that leaves the vertex at t. A
+/// solver that needs a meridian between the samples of [`PoleMeridians`] evaluates it here.
+#[must_use]
+pub fn meridian_tangent(face: &Face, side: ParamSide, t: f64) -> DVec3 {
+    let domain = face.surface.domain();
+    let [u, v] = side.params_at(&domain, t);
+    let s = face.surface.eval(u, v);
+    match side {
+        ParamSide::UMin => s.du,
+        ParamSide::UMax => -s.du,
+        ParamSide::VMin => s.dv,
+        ParamSide::VMax => -s.dv,
+    }
+}
+
 /// The meridians of every face side of `solid` that collapses into a vertex, in vertex order.
 pub(crate) fn pole_meridians(solid: &Solid) -> Vec<PoleMeridians> {
     let mut all = Vec::new();
@@ -62,16 +79,7 @@ pub(crate) fn pole_meridians(solid: &Solid) -> Vec<PoleMeridians> {
                 let domain = surface.domain();
                 let across_v = matches!(side, ParamSide::VMin | ParamSide::VMax);
                 let range = domain[usize::from(!across_v)];
-                let tangent_at = |t: f64| {
-                    let [u, v] = side.params_at(&domain, t);
-                    let s = surface.eval(u, v);
-                    match side {
-                        ParamSide::UMin => s.du,
-                        ParamSide::UMax => -s.du,
-                        ParamSide::VMin => s.dv,
-                        ParamSide::VMax => -s.dv,
-                    }
-                };
+                let tangent_at = |t: f64| meridian_tangent(face, side, t);
                 let at: [f64; POLE_MERIDIANS] = std::array::from_fn(|k| {
                     range.min + range.span() * k as f64 / POLE_MERIDIANS as f64
                 });
