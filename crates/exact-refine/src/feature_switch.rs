@@ -404,7 +404,9 @@ fn apex_meridian_between(
     // Between two samples Δ apart the score (|pull| times the cosine of a unit direction that
     // turns at most at unit rate) rises above the better sample by at most |pull| Δ² / 8:
     // twice that is the margin.
-    if !(best_score > -0.25 * pull.length() * spacing * spacing) {
+    let margin = -0.25 * pull.length() * spacing * spacing;
+    // NaN (a degenerate pull or tangent) searches nothing.
+    if best_score.is_nan() || margin.is_nan() || best_score <= margin {
         return None;
     }
     let step = meridians.at.get(1).map_or(0.0, |t1| t1 - meridians.at[0]);
