@@ -357,6 +357,12 @@ pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Lo
     reenter_untaken(body, loc, pull, threshold, &TakenEntries::default())
 }
 
+/// Whether a meridian (`tangent`) and the one half a turn round (`opposite`) leave their
+/// vertex in opposite directions: a smooth pole, with a tangent plane, rather than an apex.
+fn smooth_pole(tangent: DVec3, opposite: DVec3) -> bool {
+    (tangent.normalize_or_zero() + opposite.normalize_or_zero()).length() <= 1e-6
+}
+
 /// At an apex, the meridian between the samples of `meridians` that best follows `pull` (a
 /// golden-section search over the two sample spacings around the best sample), with its
 /// running parameter, when a meridian between the samples could descend where the best sample
@@ -378,11 +384,7 @@ fn apex_meridian_between(
     pull: DVec3,
 ) -> Option<(DVec3, f64)> {
     let face = solid.face(meridians.face);
-    let smooth = (meridians.tangents[0].normalize_or_zero()
-        + meridians.opposite[0].normalize_or_zero())
-    .length()
-        <= 1e-6;
-    if smooth {
+    if smooth_pole(meridians.tangents[0], meridians.opposite[0]) {
         return None;
     }
     let score = |tangent: DVec3| pull.dot(frame.vector(tangent).normalize_or_zero());
@@ -533,10 +535,7 @@ pub(crate) fn reenter_untaken(
                     // Off a smooth pole only, where the meridian half a turn round leaves in the
                     // opposite direction (a tangent plane); an apex (a cone's tip) is a vertex
                     // of the solid, and its re-entry starts on it as before.
-                    let smooth = (tangent.normalize_or_zero() + opposite.normalize_or_zero())
-                        .length()
-                        <= 1e-6;
-                    if smooth {
+                    if smooth_pole(tangent, opposite) {
                         uv[across] = off_vertex(
                             &domain[across],
                             meridians.side,
