@@ -502,3 +502,86 @@ fn a_body_beside_a_ferrule_step_keeps_its_minimum() {
         "{report:?}"
     );
 }
+
+/// `soak 10000 --seed 13115`, goblet-pencil 15938213170571082673 (built as an overlap of
+/// -4.708e-4 mm; "state": the pipeline said contact, the oracle penetration at -0.114 mm): the
+/// pencil's apex is 4.708e-4 mm inside the goblet's outer wall (face 7), 0.114 mm below the
+/// rim's top face (face 8, the plane z = 150) and 3.0 mm from the inner wall (face 9). The
+/// apex with each of those faces is a critical pair of the distance (the connecting vector lies
+/// in the apex's cone of normals), and the oracle kept the two deeper ones: its through-material
+/// test looked only for a *sample* nearer than the depth, and samples are 1 mm apart here.
+/// It now also projects onto the exact surfaces from each face's nearest sample, and keeps a
+/// pair only if one point lies inside the other solid with the other's point as its nearest
+/// (at an apex the inside test uses the cone's axis, not one flank's normal). Independent check:
+/// the apex's distance to face 7 (Newton on the exact surface, here) is the built depth, and the
+/// rim's point above the apex lies outside the pencil's tip cone (the profile's line from
+/// (1, 174) to (0, 177.5): half-angle atan(1/3.5)), so no goblet point is deeper in the pencil
+/// there and no pair is deeper than the apex's.
+#[test]
+fn an_apex_inside_a_wall_is_measured_to_the_nearest_face() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [121.62154173881285, 148.37060406862912, 76.01824392499853],
+        [
+            0.5179175637923038,
+            -0.15389218974168356,
+            -0.4364970940368587,
+            0.7194087002179862,
+        ],
+    );
+    let (goblet, pencil) = (&objects["goblet"], &objects["pencil"]);
+    let built = -4.707_944_270_001_212e-4;
+
+    // The apex against the outer wall, on the exact surfaces.
+    let apex = pose_b * DVec3::new(0.0, 0.0, 177.5);
+    let mut uv = [1.519, 0.998];
+    let depth = distance_to_face(&goblet.model.solid, FaceId(7), apex, &mut uv);
+    assert!((depth + built).abs() < 1e-9, "{depth}");
+    let wall = goblet.model.solid.eval_face(FaceId(7), uv[0], uv[1]).point;
+    let outward = goblet
+        .model
+        .solid
+        .face(FaceId(7))
+        .surface
+        .normal(uv[0], uv[1])
+        .expect("the wall is smooth there");
+    assert!(
+        (apex - wall).dot(outward) < 0.0,
+        "the apex is behind the outer wall"
+    );
+    // The rim's point above the apex is outside the tip cone.
+    let rim = DVec3::new(apex.x, apex.y, 150.0);
+    let axis = pose_b.rotation * DVec3::Z;
+    let half_angle = (1.0_f64 / 3.5).atan();
+    let off_axis = (rim - apex).angle_between(-axis);
+    assert!(off_axis > half_angle, "{off_axis} against {half_angle}");
+
+    let oracle = oracle_report(
+        &goblet.model.solid,
+        &pencil.model.solid,
+        &pose_b,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
+    assert!(
+        (oracle.min_distance - built).abs() < 1e-9,
+        "{:?}",
+        oracle.contacts
+    );
+    let report = pipeline
+        .query(
+            goblet,
+            &DPose3::IDENTITY,
+            pencil,
+            &pose_b,
+            &mut QueryScratch::default(),
+        )
+        .expect("unit quaternions");
+    assert_eq!(report.state, PairState::Contact, "{report:?}");
+    let deepest = report
+        .contacts
+        .iter()
+        .map(|c| c.distance)
+        .fold(f64::INFINITY, f64::min);
+    assert!((deepest - built).abs() < 1e-9, "{report:?}");
+}

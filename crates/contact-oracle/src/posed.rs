@@ -35,6 +35,9 @@ pub(crate) struct SideParam {
     pub inward: f64,
 }
 
+/// Normals averaged around an apex ([`PosedSolid::apex_outward`]).
+const APEX_RING: usize = 16;
+
 impl<'a> PosedSolid<'a> {
     pub fn new(solid: &'a Solid, pose: &DPose3) -> Self {
         let grids = solid
@@ -199,10 +202,14 @@ impl<'a> PosedSolid<'a> {
     /// normal on a face; the normalised sum of the adjacent faces' normals at an edge or
     /// vertex (its scalar product with any direction of the normal cone of a convex edge or
     /// corner whose faces are less than 180° apart is positive, and negative for the opposite
-    /// of one).
+    /// of one). At an apex (a point of a collapsed side where the face has no normal) it is
+    /// the mean of the face's normals around the apex ([`Self::apex_outward`]), the axis of a
+    /// cone's tip.
     pub fn sign_normal(&self, face: FaceId, uv: [f64; 2], held: Held) -> Option<DVec3> {
         match held {
-            Held::Face => self.normal(face, uv[0], uv[1]),
+            Held::Face => self
+                .normal(face, uv[0], uv[1])
+                .or_else(|| self.apex_outward(face, uv)),
             Held::Edge { edge, t, .. } => {
                 let mut sum = DVec3::ZERO;
                 for use_ in &self.solid.edge(edge).uses {
@@ -224,9 +231,32 @@ impl<'a> PosedSolid<'a> {
                         sum += self.normal(use_.face, u, v).unwrap_or(DVec3::ZERO);
                     }
                 }
-                sum.try_normalize()
+                sum.try_normalize().or_else(|| self.apex_outward(face, uv))
             }
         }
+    }
+
+    /// The mean outward normal around an apex at (u, v) of `face`: the face's normals at
+    /// [`APEX_RING`] points of the running parameter, a 1e-6 fraction of the pinned
+    /// parameter's span inside the collapsed side; `None` off a collapsed side or where the
+    /// mean vanishes.
+    fn apex_outward(&self, face: FaceId, uv: [f64; 2]) -> Option<DVec3> {
+        let side = self
+            .sides_at(face, uv, 0.0)
+            .into_iter()
+            .find(|&side| matches!(self.boundary(face, side), Boundary::Vertex(_)))?;
+        let pinned = self.side_param(face, side);
+        let running = self.range(face, 1 - pinned.index);
+        let inside = pinned.value + pinned.inward * 1e-6 * self.range(face, pinned.index).span();
+        let mut sum = DVec3::ZERO;
+        for k in 0..APEX_RING {
+            let mut at = [0.0; 2];
+            at[pinned.index] = inside;
+            at[1 - pinned.index] =
+                running.min + (k as f64 + 0.5) / APEX_RING as f64 * running.span();
+            sum += self.normal(face, at[0], at[1]).unwrap_or(DVec3::ZERO);
+        }
+        sum.try_normalize()
     }
 
     /// The exact feature a point is on: the held edge or vertex; for a point free on a face
