@@ -36,8 +36,8 @@
 //!
 //! - pencil-goblet 6346694554730072555 (`soak 10000 --seed 9102`, a state failure): a goblet's
 //!   wall cutting a pencil's ferrule 0.0135 mm under its step, 0.159 mm deep, answered as a
-//!   contact: the witness check's trace stalls within the mesh's error of the step (FIXME in
-//!   the test).
+//!   contact: the witness check's segment trace stalled within the mesh's error of the step.
+//!   The check now measures the nearest boundary point on the exact surfaces.
 //!
 //! Truth, independent of the stages: whether a point is inside a solid by the parity of a
 //! ray's crossings with its closed tessellation (decisive for points farther from the
@@ -342,8 +342,8 @@ fn a_goblet_rim_inside_a_tube_below_its_end_is_a_penetration() {
     assert_eq!(report.state, PairState::Separated, "{report:?}");
 }
 
-/// FIXME (a pipeline failure, analysed, not fixed): pencil-goblet 6346694554730072555 of
-/// `soak 10000 --seed 9102`, a state failure. The goblet's cup wall cuts the pencil's ferrule (the cylinder r = 3.6, z 6
+/// pencil-goblet 6346694554730072555 of `soak 10000 --seed 9102`, a state failure (a FIXME from
+/// session 9 to 14). The goblet's cup wall cuts the pencil's ferrule (the cylinder r = 3.6, z 6
 /// to 14) just below the step at z = 14, where an annulus steps down to the body (r = 3.5).
 /// Two witnesses: the goblet's point at r = 3.44, z = 13.9865 lies in the pencil, 0.0608 mm
 /// from its nearest boundary point on the step's inner, concave edge; and the ferrule's point
@@ -353,18 +353,20 @@ fn a_goblet_rim_inside_a_tube_below_its_end_is_a_penetration() {
 /// nearest; until session 14 it asked both points to be each other's nearest, which the
 /// 0.159 mm pair is not, and reported the 0.0608 mm one).
 ///
-/// Stage 3 reaches the 0.159 mm pair, but its witness check rejects it: the check traces the
+/// Stage 3 reached the 0.159 mm pair, but its witness check rejected it: the check traced the
 /// segment against the pencil's mesh (chordal error 0.05 mm), and the segment runs 0.0135 mm
 /// under the step's annulus, well within the 3e where the mesh cannot tell a wall from a
-/// graze, so the trace stalls and the pair is answered as a contact from minima found
-/// elsewhere.
+/// graze, so the trace stalled and the pair was answered as a contact from minima found
+/// elsewhere (the 0.0608 mm pair the oracle reported before was no critical pair: its
+/// residual was 0.0135 mm, the step's height over the goblet's point). The check now asks
+/// the ferrule's point for its nearest goblet point, measured on the exact faces.
 ///
 /// Truth independent of both: each point's nearest boundary point on the other solid by the
 /// meridian distance (the solids are surfaces of revolution: a point's distance to a face is
 /// its distance, in its meridian half-plane, to the face's profile, minimised here by dense
 /// sampling and golden section over the profile's parameter), and inside-ness by ray parity.
 #[test]
-fn a_goblet_wall_under_a_ferrule_step_is_a_penetration_fixme() {
+fn a_goblet_wall_under_a_ferrule_step_is_a_penetration() {
     let pipeline = ContactPipeline::new(ContactOptions::default()).expect("default options");
     let objects = prepare_objects(&pipeline).expect("fixture objects build");
     let (pencil, goblet) = (&objects["pencil"], &objects["goblet"]);
@@ -423,9 +425,18 @@ fn a_goblet_wall_under_a_ferrule_step_is_a_penetration_fixme() {
             &mut QueryScratch::default(),
         )
         .expect("unit quaternions");
-    // FIXME: a penetration; today's answer is a contact (the 0.159 mm pair is rejected by
-    // the witness check's trace, which stalls within the pencil mesh's error of the step).
-    assert_eq!(report.state, PairState::Contact, "{report:?}");
+    assert_eq!(report.state, PairState::Penetration, "{report:?}");
+    let depth_found = report
+        .contacts
+        .iter()
+        .min_by(|x, y| x.distance.total_cmp(&y.distance))
+        .expect("the witness is reported");
+    assert!(
+        (depth_found.distance - deepest.distance).abs() < 1e-9
+            && depth_found.point_a.distance(ferrule) < 1e-6
+            && depth_found.point_b.distance(p) < 1e-6,
+        "{depth_found:?} against {deepest:?}"
+    );
 }
 
 /// Distance (mm) from `p` (the solid's frame) to the boundary of `solid`, a solid of

@@ -12,7 +12,7 @@ use exact_refine::{
 };
 use geom_param::{
     Boundary, ComponentId, DPose3, DQuat, DVec3, EdgeConvexity, EdgeId, FaceId, FeatureLocation,
-    ParamSide, Seed, SeedPoint,
+    ParamSide, Seed, SeedPoint, Solid,
 };
 use mesh_narrowphase::{ConcavePath, MeshNarrowphase, MeshNarrowphaseOptions, MeshPhase};
 use std::collections::BTreeMap;
@@ -873,6 +873,14 @@ impl NearestBoundary for Meshes<'_> {
                 error_bound: n.error_bound,
             })
     }
+
+    fn solid(&self) -> Option<&Solid> {
+        Some(&self.0.model.solid)
+    }
+
+    fn faces_near(&self, local_point: DVec3, radius: f64) -> Vec<FeatureLocation> {
+        MeshNarrowphase::default().faces_near(&self.0.model, &self.0.mesh, local_point, radius)
+    }
 }
 
 /// Found by the flip property in `cargo xtask soak 10000 --seed 14` (goblet-goblet
@@ -885,10 +893,11 @@ impl NearestBoundary for Meshes<'_> {
 /// 127.5 mm "deep" between A's rim (edge 7, z = 150) and B's inner cup (face 9), a distance
 /// through the material signed negative. The normal-cone Stage 2 (issue 15) no longer hands
 /// that seed, but the paper's proxy path still does (the seed below is its literal output).
-/// Fixed (issue 18) by the witness check: a penetration witness must be a pair of mutually
-/// nearest boundary points; Stage 3 sphere-traces the pair's segment against Stage 2's meshes
-/// (`exact_refine::check_witness`) and meets B's wall 117 mm along it, 10 mm before B's
-/// point: the pair is dropped, on both Stage 2 paths. Since session 6 the seed itself reaches
+/// Fixed (issue 18) by the witness check (`exact_refine::check_witness`): a penetration
+/// witness must have one point inside the other solid with the other point as its nearest
+/// boundary point; B's boundary passes 95 mm from A's point, nearer than the pair's 127.5 mm
+/// (Stage 2's meshes show it beyond their chordal error), and A's passes nearer to B's point:
+/// the pair is dropped, on both Stage 2 paths. Since session 6 the seed itself reaches
 /// the true contact (the penetration solver keeps its roles on a tie); the through-material
 /// pair is kept literally for the check.
 #[test]
@@ -951,8 +960,7 @@ fn a_witness_through_the_material_is_no_penetration() {
         diagnostics: refined.diagnostics,
     };
     // Independent of the check: A's point has B's boundary (its mesh, within the chordal
-    // error) 95 mm away, nearer than the pair's 127.5 mm; the segment meets B's wall about
-    // 117 mm along, 10 mm before B's point.
+    // error) 95 mm away, nearer than the pair's 127.5 mm.
     let near = Meshes(g)
         .nearest_boundary(pose_b.inverse() * through.point_a)
         .expect("finite point");
@@ -961,7 +969,7 @@ fn a_witness_through_the_material_is_no_penetration() {
         WitnessCheck::ThroughMaterial {
             side: WitnessSide::B,
             at,
-        } => assert!(at > 100.0 && at < 126.0, "{at}"),
+        } => assert!((at - near.distance).abs() < 1e-9, "{at} {near:?}"),
         other => panic!("{other:?}"),
     }
     // The true contact of that pose passes the same check (it is 1e-3 mm deep, within the

@@ -8,7 +8,8 @@ use exact_refine::{
     BoundaryDistance, NearestBoundary, NewtonRefiner, RefinedContact, Refiner, WitnessCheck,
 };
 use geom_param::{
-    ComponentId, DPose3, DVec3, LoadError, MeshOptions, ObjectDescription, ObjectModel, Seed,
+    ComponentId, DPose3, DVec3, FeatureLocation, LoadError, MeshOptions, ObjectDescription,
+    ObjectModel, Seed, Solid,
 };
 use mesh_narrowphase::{
     ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshVerdict, RegionProbes,
@@ -386,10 +387,10 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
 impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     /// Enters one refined seed into `report`: below delta1 and converged a penetration, unless
     /// Stage 3's
-    /// witness check ([`Refiner::check_witness`] over Stage 2's meshes) finds the pair measured
-    /// through the material (then it is dropped: no evidence of anything); a witness point
-    /// (merged with an earlier one within the merge tolerance), and, when the check certifies
-    /// the pair mutually nearest and it is the solver's deepest pair (second-order test
+    /// witness check ([`Refiner::check_witness`] over Stage 2's meshes and the exact solids)
+    /// finds the pair measured through the material (then it is dropped: no evidence of
+    /// anything); a witness point (merged with an earlier one within the merge tolerance), and,
+    /// when the check certifies the pair and it is the solver's deepest pair (second-order test
     /// passed), a contact with negative distance (merged likewise). An unconverged pair below
     /// delta1 proves nothing (one that stopped short on the way to an edge pair's witness may
     /// be below delta1 where the converged answer is a contact in the band) and is dropped
@@ -428,7 +429,7 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
             {
                 report.penetration_witnesses.push(witness);
             }
-            if check == WitnessCheck::MutuallyNearest
+            if check == WitnessCheck::Certified
                 && refined.diagnostics.is_local_minimum
                 && insert_or_merge(
                     &mut report.contacts,
@@ -457,8 +458,9 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     }
 }
 
-/// One prepared object's meshes as Stage 3's [`NearestBoundary`] query (the pipeline adapts
-/// Stage 2's [`MeshPhase::nearest_boundary_point`] to it; neither stage knows the other).
+/// One prepared object's meshes as Stage 3's [`NearestBoundary`] query, with its exact solid
+/// (the pipeline adapts Stage 2's [`MeshPhase::nearest_boundary_point`] and
+/// [`MeshPhase::faces_near`] to it; neither stage knows the other).
 struct MeshBoundary<'p, B: BroadPhase, M: MeshPhase> {
     phase: &'p M,
     object: &'p PreparedObject<B, M>,
@@ -479,6 +481,15 @@ impl<B: BroadPhase, M: MeshPhase> NearestBoundary for MeshBoundary<'_, B, M> {
                 distance: n.distance,
                 error_bound: n.error_bound,
             })
+    }
+
+    fn solid(&self) -> Option<&Solid> {
+        Some(&self.object.model.solid)
+    }
+
+    fn faces_near(&self, local_point: DVec3, radius: f64) -> Vec<FeatureLocation> {
+        self.phase
+            .faces_near(&self.object.model, &self.object.mesh, local_point, radius)
     }
 }
 

@@ -21,11 +21,12 @@
 //! decides that from the signed distance), and surfaces of revolution: it only uses the
 //! `Surface`/`Curve` traits and the `Solid` adjacency of `geom-param`.
 //!
-//! A penetration witness is a critical pair of two features; whether it is a pair of mutually
-//! nearest boundary points (and not a pair measured through the material) needs the rest of
-//! both boundaries: [`Refiner::check_witness`] takes a [`NearestBoundary`] query per object
-//! (the pipeline passes Stage 2's meshes) and sphere-traces the witness's segment
-//! (`witness_check.rs`).
+//! A penetration witness is a critical pair of two features; whether one of its points lies
+//! inside the other solid with the other point as its nearest boundary point (and the pair is
+//! not measured through the material) needs the rest of both boundaries:
+//! [`Refiner::check_witness`] takes a [`NearestBoundary`] query per object (the pipeline passes
+//! Stage 2's meshes and the exact solids) and measures each point's distance to the other
+//! boundary (`witness_check.rs`).
 //!
 //! Units: millimetres and radians. Frames: results in A's object frame.
 
@@ -47,5 +48,5 @@ pub use newton_refiner::NewtonRefiner;
 pub use options::NewtonOptions;
 pub use refiner::{RefineDiagnostics, RefineStatus, RefinedContact, Refiner};
 pub use witness_check::{
-    BoundaryDistance, MAX_TRACE_STEPS, NearestBoundary, WitnessCheck, WitnessSide, check_witness,
+    BoundaryDistance, NearestBoundary, WitnessCheck, WitnessSide, check_witness,
 };

@@ -1,43 +1,57 @@
-//! The mutual-nearest test of a penetration witness: its two points must be nearest boundary
-//! points of each other, not a critical pair measured through the material.
+//! The nearest-boundary test of a penetration witness: one of its points must lie inside the
+//! other solid with the other point as its nearest boundary point, so that the pair's distance
+//! is that point's depth, not a critical pair measured through the material.
 //!
 //! A penetration witness (p_a on A, p_b on B, depth δ = |p_b − p_a|, opposed normals) is a
 //! critical pair of ½|P_a − P_b|² on two *features*; Stage 3 sees only those features, so it
-//! cannot tell a true witness from a critical pair that passes through other parts of the two
-//! solids (a goblet's rim against the other goblet's inner cup, 127.5 mm "deep" through its
-//! outer wall: `xtask/tests/soak_regressions.rs`). What tells them apart is the rest of the
+//! cannot tell a true witness from a critical pair that passes other parts of the two solids
+//! (a goblet's rim against the other goblet's inner cup, 127.5 mm "deep" through its outer
+//! wall: `xtask/tests/soak_regressions.rs`). What tells them apart is the rest of the
 //! boundary, which only a global query knows: [`NearestBoundary`] (in the pipeline, Stage 2's
-//! meshes with their chordal error bound).
+//! meshes with their chordal error bound, and the exact solid behind them).
 //!
-//! The rule: p_b must be the nearest point of B's boundary to p_a *along the witness*, and
-//! p_a the nearest point of A's boundary to p_b: the segment p_a p_b meets B's boundary only
-//! at p_b and A's only at p_a (it lies in both solids, inside the lens of the overlap). That
-//! is certified by sphere tracing: from x = p_a, a nearest-boundary query bounds the distance
-//! from x to B's boundary below by r = d_mesh − e (e the mesh's error bound); no point of B's
-//! boundary lies in the ball of radius r around x, so x advances by r towards p_b. The witness
-//! passes when a ball reaches within 2e + τ of p_b (τ: rounding, 1e-9 of the coordinates), and
-//! fails when the trace stalls farther away (B's mesh within 2e of the segment: B's exact
-//! boundary within 3e of it, away from p_b). Then the same from p_b towards p_a against A.
-//! For a witness whose p_b is B's globally nearest boundary point to p_a (spheres, any convex
-//! B within its focal distance) the first ball already reaches p_b: one query per side.
+//! The rule: the pair is a witness when, for one side x with the other side y, no point of
+//! y's boundary is nearer to p_x than δ (less τ: rounding, 1e-9 of the coordinates) and p_x
+//! lies inside y (behind y's outward direction at p_y: the face normal, or the mean around an
+//! edge, corner or apex). Then δ is the depth of p_x in y, and the pair, a critical pair, a
+//! local extreme of that depth over x's boundary: the signed distance field of y sampled on
+//! x's boundary, as a physics engine pushes the solids apart. Where both points lie on edges
+//! or at vertices, the faces that hold p_y are left out: p_x lies in p_y's cone of normals
+//! (Stage 3's critical-pair condition), and the flank beside an edge passes nearer to a point
+//! inside the wedge than the edge does (two sharp rims crossing 1e-3 mm deep: the depth is the
+//! edges' distance, the translation that separates them). A point on a face inside the other
+//! solid's wedge is measured to the flanks: a goblet rim's corner inside the other goblet's
+//! rim, against its outer wall 0.76 mm away, is no witness, the rim's top being nearer. The
+//! other direction need not hold, and often does not: a pencil's apex
+//! 4.7e-4 mm inside a goblet's wall has the wall point as its nearest, while the cone's flank
+//! is nearer to the wall point than the apex; a pencil's ferrule point 0.159 mm inside a
+//! goblet's wall has the goblet's point as its nearest, while that point, inside the pencil
+//! under the ferrule's step, is nearer to the step's edge. The oracle applies the same rule
+//! (`contact_oracle`'s `found::through_material`), whose witnesses always have a point on a
+//! face.
 //!
-//! A side whose point is on an edge or at a vertex is not traced: the segment leaves such a
-//! point along a direction of its normal cone, not along a face normal, so that side's own
-//! boundary grazes the segment next to the point (a pencil's apex poking 0.48 mm into the
-//! bowl's bottom, its cone at 45° to the segment: the cone's side passes within
-//! ρ sin 25° of the segment ρ from the apex), which a trace with a 0.05 mm mesh cannot tell
-//! from a wall. Such a point is certified by the refiner's normal-cone test, and the other
-//! point, on a face, by the trace from it. (The through-material goblet pair has A's point on
-//! A's rim edge and B's on B's inner cup, a face: the trace against B rejects it.)
+//! How it is decided: the representation's nearest distance d_r with error bound e settles
+//! what it can (d_r − e >= δ − τ: nothing nearer; for p_y on a face, d_r + e < δ − τ: a nearer
+//! point). Otherwise, since δ is a distance to the boundary itself, a bound cannot certify it,
+//! and the exact distance is measured where the representation knows its solid and the faces
+//! near a point ([`NearestBoundary::solid`], [`NearestBoundary::faces_near`]): a Newton
+//! projection onto each face whose representation comes within δ + e, from the
+//! representation's nearest parameters on it (skipping the flanks left out, and any
+//! projection that slides onto one).
 //!
-//! Why not "globally nearest": a pencil pushed more than half-way into a bowl's wall has the
-//! wall's far side nearer to its tip than the side it entered through, yet the entry side is
-//! the depth a physics engine must undo; the segment rule accepts that witness (the segment
-//! crosses no boundary) and still rejects the through-material pair (it crosses B's outer wall
-//! and the cavity).
+//! Until session 14 the test traced the segment p_a p_b against the meshes instead (it had to
+//! meet B's boundary only at p_b and A's only at p_a). That stalled within the meshes' error of
+//! boundaries the segment only grazes (a goblet's wall 0.0135 mm under a pencil's ferrule
+//! step), and accepted pairs measured past a nearer face that the segment runs beside (the
+//! apex above against the goblet rim's top face, 0.114 mm up, the vertical being in the apex's
+//! cone of normals). What it kept and this rule gives up: a pencil pushed more than half-way
+//! through a bowl's wall is measured to the wall's far side, the nearer one.
 
+use crate::feature_eval::{Body, Frame};
+use crate::newton::{Outcome, Reentry, minimize_projection};
+use crate::options::NewtonOptions;
 use crate::refiner::RefinedContact;
-use geom_param::{DPose3, DVec3, FeatureLocation};
+use geom_param::{DPose3, DVec3, FeatureLocation, Solid};
 
 /// The nearest point of one object's boundary to a query point, as a global representation of
 /// the object (for instance Stage 2's meshes) knows it.
@@ -52,6 +66,35 @@ pub trait NearestBoundary {
     /// The nearest boundary point to `local_point` (object frame, mm) with its distance and
     /// error bound; `None` when unknown.
     fn nearest_boundary(&self, local_point: DVec3) -> Option<BoundaryDistance>;
+
+    /// The exact solid the representation stands for, in the same (object) frame, when known.
+    /// With [`Self::faces_near`] it lets [`check_witness`] measure the exact boundary's
+    /// distance where the representation's error bound cannot decide. Default: unknown.
+    fn solid(&self) -> Option<&Solid> {
+        None
+    }
+
+    /// Every face of [`Self::solid`] whose representation comes within `radius` (mm) of
+    /// `local_point` (object frame), each once, at the parameters of its representation's point
+    /// nearest to `local_point`: a face whose exact surface is within `radius` − e of the point
+    /// (e: [`BoundaryDistance::error_bound`]) must be among them. Default: none known.
+    fn faces_near(&self, _local_point: DVec3, _radius: f64) -> Vec<FeatureLocation> {
+        Vec::new()
+    }
+
+    /// The unit outward direction (object frame) of the boundary at `location`, whose point is
+    /// `local_point`: what tells a point inside from one outside where that boundary point is
+    /// its nearest. Default: from [`Self::solid`] ([`Body::outward`]: the face normal, the
+    /// normalised mean of the face normals around an edge or corner, the axis of an apex);
+    /// `None` without a solid.
+    fn outward(&self, _local_point: DVec3, location: FeatureLocation) -> Option<DVec3> {
+        let body = Body::Solid {
+            solid: self.solid()?,
+            frame: Frame::identity(),
+            within: None,
+        };
+        body.outward(&Some(location))
+    }
 }
 
 /// What a [`NearestBoundary`] query returns (object frame, mm).
@@ -65,47 +108,46 @@ pub struct BoundaryDistance {
     pub error_bound: f64,
 }
 
-/// Which side's boundary a [`WitnessCheck::ThroughMaterial`] trace ran into.
+/// Which side of a [`WitnessCheck::ThroughMaterial`] pair is reported.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WitnessSide {
-    /// The segment from `point_a` towards `point_b` met B's boundary before `point_b`.
+    /// B's boundary passes nearer to `point_a` than `point_b` does (or `point_a` is outside
+    /// B).
     B,
-    /// The segment from `point_b` towards `point_a` met A's boundary before `point_a`.
+    /// A's boundary passes nearer to `point_b` than `point_a` does (or `point_b` is outside
+    /// A).
     A,
 }
 
 /// The verdict of [`check_witness`] on a penetration witness.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum WitnessCheck {
-    /// Certified: the segment `point_a` `point_b` meets B's boundary only within
-    /// 2e_B + τ of `point_b` and A's only within 2e_A + τ of `point_a` (e: the error bounds of
-    /// the [`NearestBoundary`] queries, τ = 1e-9 of the coordinates), each side traced where
-    /// its point is on a face (see the module docs). Also for a pair that does not penetrate
-    /// (nothing to check).
-    MutuallyNearest,
-    /// Not a witness: the boundary of `side` passes within 3e of the segment, farther than
-    /// 2e + τ from the segment's end on that side: the pair is measured through the material.
+    /// Certified (see the module docs): one point lies inside the other solid, and no point of
+    /// that solid's boundary (but, between two edges or vertices, the flanks of the other
+    /// point) is nearer to it than the depth less τ = 1e-9 of the coordinates. Also for a pair that does not
+    /// penetrate (nothing to check).
+    Certified,
+    /// Not a witness: neither side holds, the pair is measured through the material. `side`
+    /// is the first side that found a nearer boundary point (A's point against B's boundary
+    /// first), or B where both points are only outside.
     ThroughMaterial {
-        /// Whose boundary the trace met.
+        /// Whose boundary passes nearer.
         side: WitnessSide,
-        /// Distance (mm) from the trace's start to where it stalled.
+        /// Distance (mm) from the other solid's point to that nearer boundary point (the depth
+        /// itself where the points are only outside).
         at: f64,
     },
-    /// The queries could not decide: one answered `None` (non-finite points included), or the
-    /// trace took more than [`MAX_TRACE_STEPS`] balls (a segment grazing a boundary).
+    /// The queries could not decide: one answered `None` (non-finite points included), an
+    /// exact distance was needed and not had (no solid, or a projection that did not
+    /// converge), or the outward direction was unknown.
     Undecided,
 }
 
-/// Sphere-tracing steps per side before [`WitnessCheck::Undecided`]: a ball per step, each at
-/// least e wide, and a segment well inside the solid is covered by one or two.
-pub const MAX_TRACE_STEPS: u32 = 64;
-
-/// Checks that `witness` (A's frame, B posed by `pose_ab`: point_in_a = pose_ab * point_in_b)
-/// is a pair of mutually nearest boundary points, as described in the module docs: the trace
-/// against B when `location_b` is a face, against A when `location_a` is. `near_a`
-/// answers in A's frame, `near_b` in B's own frame. A witness with `distance >= 0` (not
-/// penetrating) or with non-finite points is returned as [`WitnessCheck::MutuallyNearest`]
-/// and [`WitnessCheck::Undecided`] respectively.
+/// Checks `witness` (A's frame, B posed by `pose_ab`: point_in_a = pose_ab * point_in_b) as
+/// described in the module docs: A's point against B's boundary (`near_b`, which answers in
+/// B's own frame), then B's point against A's (`near_a`, in A's frame). A witness with
+/// `distance >= 0` (not penetrating) is [`WitnessCheck::Certified`]; one with non-finite
+/// points [`WitnessCheck::Undecided`].
 #[must_use]
 pub fn check_witness(
     pose_ab: &DPose3,
@@ -118,97 +160,129 @@ pub fn check_witness(
         return WitnessCheck::Undecided;
     }
     if witness.distance >= 0.0 {
-        return WitnessCheck::MutuallyNearest;
+        return WitnessCheck::Certified;
     }
-    let rounding = 1e-9 * (pa.length() + pb.length() + pa.distance(pb));
+    let depth = pa.distance(pb);
+    let limit = depth - 1e-9 * (pa.length() + pb.length() + depth);
     let b_from_a = pose_ab.inverse();
-    let to_b = |x: DVec3| near_b.nearest_boundary(b_from_a * x);
-    let to_a = |x: DVec3| near_a.nearest_boundary(x);
+    // (the other solid's boundary, the point in its frame, its own point there and location)
+    let sides = [
+        (
+            near_b,
+            b_from_a * pa,
+            b_from_a * pb,
+            witness.location_b,
+            WitnessSide::B,
+        ),
+        (near_a, pb, pa, witness.location_a, WitnessSide::A),
+    ];
+    // Flanks are left out only between two sharp points (see the module docs).
     let on_face = |l: &FeatureLocation| matches!(l, FeatureLocation::Face { .. });
-    let reached = |start, end, query: &dyn Fn(DVec3) -> Option<BoundaryDistance>, end_on_face| {
-        if end_on_face {
-            trace(start, end, rounding, query)
-        } else {
-            Trace::Reached
+    let sharp = !on_face(&witness.location_a) && !on_face(&witness.location_b);
+    let mut undecided = false;
+    let mut nearer: Option<(WitnessSide, f64)> = None;
+    for (near, point, own_point, own, side) in sides {
+        match nearer_than(near, point, limit, sharp.then_some(own)) {
+            Nearer::At(at) => {
+                nearer.get_or_insert((side, at));
+            }
+            Nearer::Unknown => undecided = true,
+            Nearer::No => match near.outward(own_point, own) {
+                Some(n) if (point - own_point).dot(n) < 0.0 => return WitnessCheck::Certified,
+                Some(_) => {}
+                None => undecided = true,
+            },
         }
-    };
-    match reached(pa, pb, &to_b, on_face(&witness.location_b)) {
-        Trace::Reached => {}
-        Trace::Stalled(at) => {
-            return WitnessCheck::ThroughMaterial {
-                side: WitnessSide::B,
-                at,
-            };
-        }
-        Trace::Unknown => return WitnessCheck::Undecided,
     }
-    match reached(pb, pa, &to_a, on_face(&witness.location_a)) {
-        Trace::Reached => WitnessCheck::MutuallyNearest,
-        Trace::Stalled(at) => WitnessCheck::ThroughMaterial {
-            side: WitnessSide::A,
-            at,
-        },
-        Trace::Unknown => WitnessCheck::Undecided,
+    if undecided {
+        return WitnessCheck::Undecided;
     }
+    let (side, at) = nearer.unwrap_or((WitnessSide::B, depth));
+    WitnessCheck::ThroughMaterial { side, at }
 }
 
-/// How one sphere trace ended.
-enum Trace {
-    /// A certified ball reached within 2e + τ of the end.
-    Reached,
-    /// The boundary came within 2e of the segment at this distance from the start (mm).
-    Stalled(f64),
-    /// A query answered `None`, or the step cap was hit.
+/// Whether a boundary comes nearer than some distance to a point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Nearer {
+    /// No boundary point nearer.
+    No,
+    /// A boundary point at this distance (mm), nearer.
+    At(f64),
+    /// Not decided.
     Unknown,
 }
 
-/// Sphere tracing from `start` to `end` (both in A's frame) against the boundary `query`
-/// answers for (a point in A's frame in, its nearest boundary point out).
-fn trace(
-    start: DVec3,
-    end: DVec3,
-    rounding: f64,
-    query: &dyn Fn(DVec3) -> Option<BoundaryDistance>,
-) -> Trace {
-    let length = start.distance(end);
-    let Some(direction) = ((end - start) / length).try_normalize() else {
-        return Trace::Reached;
+/// Whether `near`'s boundary has a point nearer than `limit` (mm) to `local` (its own frame),
+/// leaving out the faces that hold `flanked` (the pair's point on this boundary, an edge or a
+/// vertex) when given ([`Solid::face_holds`]): the representation's answer where its error
+/// bound settles it, otherwise the exact distance to each face its representation lists
+/// within `limit` + e (a face with a point nearer than `limit` has its representation within
+/// `limit` + e), by Stage 3's projection from the listed parameters (a local Newton
+/// minimisation on the face, its edges and vertices, back into the face where the distance
+/// falls into it: the face's nearest point when the listed start is near it), not counting a
+/// projection that slid onto a face left out ([`Solid::beside`]).
+fn nearer_than(
+    near: &dyn NearestBoundary,
+    local: DVec3,
+    limit: f64,
+    flanked: Option<FeatureLocation>,
+) -> Nearer {
+    let Some(found) = near.nearest_boundary(local) else {
+        return Nearer::Unknown;
     };
-    let mut s = 0.0;
-    for _ in 0..MAX_TRACE_STEPS {
-        let Some(near) = query(start + direction * s) else {
-            return Trace::Unknown;
-        };
-        let e = near.error_bound.max(0.0);
-        if !(near.distance.is_finite() && e.is_finite()) {
-            return Trace::Unknown;
-        }
-        // No exact boundary point within `free` of the current point.
-        let free = near.distance - e;
-        let remaining = length - s;
-        // The ball covers the segment up to 2e + τ before its end (where the end's own surface
-        // may be within the bound).
-        if free + 2.0 * e + rounding >= remaining {
-            return Trace::Reached;
-        }
-        // The mesh within 2e of the segment (the exact boundary within 3e), more than
-        // 2e + τ + free from the end: the segment meets another part of the boundary.
-        if free <= e {
-            return Trace::Stalled(s);
-        }
-        s += free;
+    let e = found.error_bound.max(0.0);
+    if !(found.distance.is_finite() && e.is_finite()) {
+        return Nearer::Unknown;
     }
-    Trace::Unknown
+    if found.distance - e >= limit {
+        return Nearer::No;
+    }
+    if flanked.is_none() && found.distance + e < limit {
+        return Nearer::At(found.distance);
+    }
+    let Some(solid) = near.solid() else {
+        return Nearer::Unknown;
+    };
+    let body = Body::Solid {
+        solid,
+        frame: Frame::identity(),
+        within: None,
+    };
+    let options = NewtonOptions::default();
+    let mut best = f64::INFINITY;
+    for start in near.faces_near(local, limit + e) {
+        let FeatureLocation::Face { id, .. } = start else {
+            continue;
+        };
+        if flanked.is_some_and(|own| solid.face_holds(id, &own)) {
+            continue;
+        }
+        let solution =
+            minimize_projection(&body, local, Some(start), 0.0, &options, Reentry::Allowed);
+        if solution.outcome != Outcome::Converged {
+            return Nearer::Unknown;
+        }
+        // A projection that slid onto a flank left out does not count.
+        let slid = |own: FeatureLocation| solution.state.la.is_some_and(|l| solid.beside(&l, &own));
+        if !flanked.is_some_and(slid) {
+            best = best.min(solution.state.d.length());
+        }
+    }
+    if best < limit {
+        Nearer::At(best)
+    } else {
+        Nearer::No
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::refiner::{RefineDiagnostics, RefineStatus};
-    use geom_param::{FaceId, FeatureLocation};
+    use geom_param::{EdgeId, FaceId, FeatureLocation};
 
     /// The exact nearest boundary point of a ball (centre, radius) in its own frame, with a
-    /// pretended error bound.
+    /// claimed error bound.
     struct Ball {
         centre: DVec3,
         radius: f64,
@@ -225,9 +299,13 @@ mod tests {
                 error_bound: self.error,
             })
         }
+
+        fn outward(&self, p: DVec3, _location: FeatureLocation) -> Option<DVec3> {
+            (p - self.centre).try_normalize()
+        }
     }
 
-    /// A hollow ball (a shell between two radii): the nearest of its two spheres.
+    /// A hollow ball (a shell between two radii about the origin), exact.
     struct Shell {
         inner: f64,
         outer: f64,
@@ -248,7 +326,17 @@ mod tests {
             Some(BoundaryDistance {
                 point: n * radius,
                 distance,
-                error_bound: 1e-3,
+                error_bound: 0.0,
+            })
+        }
+
+        /// Outwards on the outer sphere, towards the centre on the inner one.
+        fn outward(&self, p: DVec3, _location: FeatureLocation) -> Option<DVec3> {
+            let n = p.try_normalize()?;
+            Some(if p.length() > 0.5 * (self.inner + self.outer) {
+                n
+            } else {
+                -n
             })
         }
     }
@@ -281,43 +369,46 @@ mod tests {
     }
 
     /// Two overlapping balls (radii 10 and 4, centres 12 apart, 2 mm deep): the closed-form
-    /// witness (10, 0, 0) / (8, 0, 0) is certified by one ball per side.
+    /// witness (10, 0, 0) / (8, 0, 0) is certified, each point the other ball's nearest. With
+    /// an error bound and no exact solid behind it, a distance to the boundary equal to the
+    /// depth cannot be certified: undecided.
     #[test]
     fn overlapping_balls_certify_their_witness() {
         let pose_ab = DPose3 {
             translation: DVec3::new(12.0, 0.0, 0.0),
             rotation: geom_param::DQuat::from_rotation_z(0.7),
         };
-        let a = Ball {
+        let ball = |radius: f64, error: f64| Ball {
             centre: DVec3::ZERO,
-            radius: 10.0,
-            error: 1e-3,
-        };
-        let b = Ball {
-            centre: DVec3::ZERO,
-            radius: 4.0,
-            error: 1e-3,
+            radius,
+            error,
         };
         let good = witness(DVec3::new(10.0, 0.0, 0.0), DVec3::new(8.0, 0.0, 0.0), -2.0);
         assert_eq!(
-            check_witness(&pose_ab, &good, &a, &b),
-            WitnessCheck::MutuallyNearest
+            check_witness(&pose_ab, &good, &ball(10.0, 0.0), &ball(4.0, 0.0)),
+            WitnessCheck::Certified
+        );
+        assert_eq!(
+            check_witness(&pose_ab, &good, &ball(10.0, 1e-3), &ball(4.0, 1e-3)),
+            WitnessCheck::Undecided
         );
     }
 
     /// A ball of radius 3 at the origin against a shell (radii 10 and 12) centred at
     /// (-8, 0, 0): A's cap near (3, 0, 0) lies in the shell's wall. Its witness against the
-    /// inner sphere, (3, 0, 0) / (2, 0, 0) (normals +x and −x, 1 mm deep), is certified; the
-    /// pair from A's (−3, 0, 0), in the cavity, to the outer sphere's (4, 0, 0) crosses the
-    /// inner sphere at (2, 0, 0), 5 mm along: through the material. With the roles swapped
-    /// the witness is certified again, and a pair crossing the shell's wall fails on A's side.
+    /// inner sphere, (3, 0, 0) / (2, 0, 0) (1 mm deep), is certified; the pair from A's
+    /// (−3, 0, 0), in the cavity, to the outer sphere's (4, 0, 0), 7 mm, is not: the inner
+    /// sphere passes 5 mm from A's point, and the ball 1 mm from B's. With the roles swapped
+    /// the witness is certified again; in the pair from the shell's outer point (−12, 0, 0) to
+    /// the ball's near pole (5, 0, 0) the shell's point is outside the ball (the pole its
+    /// nearest point) and the shell's inner sphere passes 5 mm from the pole.
     #[test]
     fn a_pair_across_a_shell_wall_is_through_material() {
         let shell_at = DVec3::new(-8.0, 0.0, 0.0);
         let ball = Ball {
             centre: DVec3::ZERO,
             radius: 3.0,
-            error: 1e-3,
+            error: 0.0,
         };
         let shell = Shell {
             inner: 10.0,
@@ -330,14 +421,14 @@ mod tests {
         let real = witness(DVec3::new(3.0, 0.0, 0.0), DVec3::new(2.0, 0.0, 0.0), -1.0);
         assert_eq!(
             check_witness(&pose_ab, &real, &ball, &shell),
-            WitnessCheck::MutuallyNearest
+            WitnessCheck::Certified
         );
         let through = witness(DVec3::new(-3.0, 0.0, 0.0), DVec3::new(4.0, 0.0, 0.0), -7.0);
         match check_witness(&pose_ab, &through, &ball, &shell) {
             WitnessCheck::ThroughMaterial {
                 side: WitnessSide::B,
                 at,
-            } => assert!((at - 5.0).abs() < 2e-3, "{at}"),
+            } => assert!((at - 5.0).abs() < 1e-12, "{at}"),
             other => panic!("{other:?}"),
         }
         // Swapped: the shell is A (at the origin), the ball B at +8 along x.
@@ -353,11 +444,8 @@ mod tests {
         );
         assert_eq!(
             check_witness(&swapped, &real, &shell, &ball),
-            WitnessCheck::MutuallyNearest
+            WitnessCheck::Certified
         );
-        // The shell's outer point (−12, 0, 0) against the ball's near pole (5, 0, 0): the
-        // segment runs outside the ball, but crosses the shell's inner sphere at (−10, 0, 0),
-        // 15 mm from the ball's point.
         let through = witness(
             DVec3::new(-12.0, 0.0, 0.0),
             DVec3::new(5.0, 0.0, 0.0),
@@ -367,15 +455,17 @@ mod tests {
             WitnessCheck::ThroughMaterial {
                 side: WitnessSide::A,
                 at,
-            } => assert!((at - 15.0).abs() < 2e-3, "{at}"),
+            } => assert!((at - 5.0).abs() < 1e-12, "{at}"),
             other => panic!("{other:?}"),
         }
     }
 
-    /// The through-material pair of the shell test with one point at a vertex: that side is
-    /// not traced (its boundary grazes the segment at an apex), the other still is.
+    /// The through-material pair of the shell test with B's point at a vertex: with A's point
+    /// on a face, B's flanks count, and the pair fails as before (the inner sphere passes 5 mm
+    /// from A's point). With A's point at a vertex too, B's flanks are to be left out, which
+    /// needs the exact solid: without it, B's side and so the pair are undecided.
     #[test]
-    fn a_side_on_a_vertex_is_not_traced() {
+    fn a_side_on_a_vertex_needs_the_exact_solid() {
         let pose_ab = DPose3 {
             translation: DVec3::new(-8.0, 0.0, 0.0),
             rotation: geom_param::DQuat::IDENTITY,
@@ -383,45 +473,33 @@ mod tests {
         let ball = Ball {
             centre: DVec3::ZERO,
             radius: 3.0,
-            error: 1e-3,
+            error: 0.0,
         };
         let shell = Shell {
             inner: 10.0,
             outer: 12.0,
         };
+        let vertex = FeatureLocation::Vertex {
+            id: geom_param::VertexId(0),
+        };
         let mut through = witness(DVec3::new(-3.0, 0.0, 0.0), DVec3::new(4.0, 0.0, 0.0), -7.0);
-        through.location_b = FeatureLocation::Vertex {
-            id: geom_param::VertexId(0),
-        };
-        // B's side (the shell's inner sphere 5 mm along) is skipped; A's is traced: from B's
-        // point (4, 0, 0) towards A's (−3, 0, 0) the ball is entered at (3, 0, 0), 1 mm along.
-        match check_witness(&pose_ab, &through, &ball, &shell) {
-            WitnessCheck::ThroughMaterial {
-                side: WitnessSide::A,
-                at,
-            } => assert!((at - 1.0).abs() < 2e-3, "{at}"),
-            other => panic!("{other:?}"),
-        }
-        // With B's point on a face again and A's at a vertex, B's side is traced and fails.
-        through.location_b = FeatureLocation::Face {
-            id: FaceId(0),
-            u: 0.0,
-            v: 0.0,
-        };
-        through.location_a = FeatureLocation::Vertex {
-            id: geom_param::VertexId(0),
-        };
+        through.location_b = vertex;
         match check_witness(&pose_ab, &through, &ball, &shell) {
             WitnessCheck::ThroughMaterial {
                 side: WitnessSide::B,
-                ..
-            } => {}
+                at,
+            } => assert!((at - 5.0).abs() < 1e-12, "{at}"),
             other => panic!("{other:?}"),
         }
+        through.location_a = vertex;
+        assert_eq!(
+            check_witness(&pose_ab, &through, &ball, &shell),
+            WitnessCheck::Undecided
+        );
     }
 
     #[test]
-    fn non_finite_or_separated_pairs_are_not_traced() {
+    fn non_finite_or_separated_pairs_are_not_checked() {
         let ball = Ball {
             centre: DVec3::ZERO,
             radius: 1.0,
@@ -435,7 +513,146 @@ mod tests {
         let apart = witness(DVec3::X, DVec3::X * 2.0, 1.0);
         assert_eq!(
             check_witness(&DPose3::IDENTITY, &apart, &ball, &ball),
-            WitnessCheck::MutuallyNearest
+            WitnessCheck::Certified
         );
+    }
+
+    /// A tube's wall (radii 8 and 10, z from 0 to 20, [`geom_param::tube`]: faces 0 outer, 1
+    /// inner, 2 bottom, 3 top; edge 1 the outer top circle) as a representation that knows its
+    /// exact distance but claims a mesh's error bound of 0.05 mm, and, when `exact`, its solid
+    /// and the faces near a point (every face, at its nearest sample of a 64 x 64 parameter
+    /// grid inside its trim).
+    struct TubeWall {
+        solid: Solid,
+        exact: bool,
+    }
+
+    impl TubeWall {
+        fn new(exact: bool) -> Self {
+            Self {
+                solid: geom_param::tube(10.0, 8.0, 20.0).expect("tube"),
+                exact,
+            }
+        }
+    }
+
+    impl NearestBoundary for TubeWall {
+        /// Exact for points inside the wall (every point queried below).
+        fn nearest_boundary(&self, p: DVec3) -> Option<BoundaryDistance> {
+            let r = p.truncate().length();
+            let distance = (r - 8.0).min(10.0 - r).min(p.z).min(20.0 - p.z);
+            (distance >= 0.0).then_some(BoundaryDistance {
+                point: p,
+                distance,
+                error_bound: 0.05,
+            })
+        }
+
+        fn solid(&self) -> Option<&Solid> {
+            self.exact.then_some(&self.solid)
+        }
+
+        /// Every face (more than the contract asks for), at its nearest grid sample.
+        fn faces_near(&self, p: DVec3, _radius: f64) -> Vec<FeatureLocation> {
+            let mut out = Vec::new();
+            for (index, face) in self.solid.faces.iter().enumerate() {
+                let id = FaceId(u32::try_from(index).expect("four faces"));
+                let [du, dv] = face.surface.domain();
+                let grid = |range: &geom_param::ParamRange, k: usize| {
+                    range.min + range.span() * (k as f64 + 0.5) / 64.0
+                };
+                let nearest = (0..64 * 64)
+                    .map(|k| [grid(&du, k % 64), grid(&dv, k / 64)])
+                    .filter(|uv| {
+                        face.trim
+                            .as_ref()
+                            .is_none_or(|t| t.contains(geom_param::DVec2::from(*uv), 0.0))
+                    })
+                    .min_by(|x, y| {
+                        let at = |uv: &[f64; 2]| self.solid.eval_face(id, uv[0], uv[1]).point;
+                        at(x).distance(p).total_cmp(&at(y).distance(p))
+                    });
+                if let Some([u, v]) = nearest {
+                    out.push(FeatureLocation::Face { id, u, v });
+                }
+            }
+            out
+        }
+    }
+
+    /// Witnesses from a point inside a tube's wall (A's) to a point of its boundary (B's),
+    /// with A a ball whose surface holds A's point and leaves B's point outside, at the depth
+    /// (so only B's side can hold). To the outer cylinder 0.1 mm deep at mid-height: the
+    /// cylinder is the nearest boundary, which the claimed bound cannot certify alone
+    /// (undecided) and the exact distance does. 1 mm deep 0.01 mm under the top cap: the cap is
+    /// nearer, as the bound alone shows. 0.05 mm deep there: only the exact distance shows the
+    /// cap nearer. To the outer top edge, 0.05 mm along its bisector: the cylinder and the cap
+    /// (the faces that hold the edge) are nearer, 0.035 mm, and count against a point on a
+    /// face; against a point at a vertex they are left out; from 2 mm inside the wall the inner
+    /// cylinder, which does not hold the edge, is nearer either way.
+    #[test]
+    fn a_depth_the_bound_cannot_settle_is_measured_on_the_exact_surface() {
+        let check = |pa: DVec3, pb: DVec3, on: Option<[FeatureLocation; 2]>, exact: bool| {
+            let a = Ball {
+                centre: pa - (pb - pa).normalize() * 100.0,
+                radius: 100.0,
+                error: 0.0,
+            };
+            let mut w = witness(pa, pb, -pa.distance(pb));
+            if let Some([a_on, b_on]) = on {
+                (w.location_a, w.location_b) = (a_on, b_on);
+            }
+            check_witness(&DPose3::IDENTITY, &w, &a, &TubeWall::new(exact))
+        };
+        let to_cylinder = |r: f64, z: f64, exact: bool| {
+            check(DVec3::new(r, 0.0, z), DVec3::new(10.0, 0.0, z), None, exact)
+        };
+        let cap_nearer = |verdict: WitnessCheck| {
+            matches!(verdict, WitnessCheck::ThroughMaterial { side: WitnessSide::B, at }
+                if (at - 0.01).abs() < 1e-9)
+        };
+        assert_eq!(to_cylinder(9.9, 10.0, false), WitnessCheck::Undecided);
+        assert_eq!(to_cylinder(9.9, 10.0, true), WitnessCheck::Certified);
+        assert!(cap_nearer(to_cylinder(9.0, 19.99, false)));
+        assert!(cap_nearer(to_cylinder(9.0, 19.99, true)));
+        assert_eq!(to_cylinder(9.95, 19.99, false), WitnessCheck::Undecided);
+        assert!(cap_nearer(to_cylinder(9.95, 19.99, true)));
+
+        let edge = FeatureLocation::Edge {
+            id: EdgeId(1),
+            t: 0.0,
+        };
+        let face = FeatureLocation::Face {
+            id: FaceId(0),
+            u: 0.0,
+            v: 0.0,
+        };
+        let vertex = FeatureLocation::Vertex {
+            id: geom_param::VertexId(0),
+        };
+        let corner = DVec3::new(10.0, 0.0, 20.0);
+        let bisector = DVec3::new(1.0, 0.0, 1.0).normalize();
+        let inside = corner - bisector * 0.05;
+        let flank = 0.05 * 0.5_f64.sqrt();
+        match check(inside, corner, Some([face, edge]), true) {
+            WitnessCheck::ThroughMaterial {
+                side: WitnessSide::B,
+                at,
+            } => assert!((at - flank).abs() < 1e-9, "{at}"),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            check(inside, corner, Some([vertex, edge]), true),
+            WitnessCheck::Certified
+        );
+        for a_on in [face, vertex] {
+            match check(DVec3::new(8.2, 0.0, 19.0), corner, Some([a_on, edge]), true) {
+                WitnessCheck::ThroughMaterial {
+                    side: WitnessSide::B,
+                    at,
+                } => assert!((at - 0.2).abs() < 1e-9, "{at}"),
+                other => panic!("{other:?}"),
+            }
+        }
     }
 }

@@ -8,11 +8,11 @@ use crate::mesh_phase::{
     ComponentRef, ContactBand, MeshBoundaryPoint, MeshInputError, MeshOutput, MeshPhase,
     MeshVerdict,
 };
-use crate::nearest_boundary::nearest_boundary_point;
+use crate::nearest_boundary::{faces_near, nearest_boundary_point};
 use crate::prepared_object::PreparedObject;
 use crate::proxy_path::triangle_path;
 use crate::query_side::Side;
-use geom_param::{ComponentKind, DPose3, ObjectModel, Seed};
+use geom_param::{ComponentKind, DPose3, FeatureLocation, ObjectModel, Seed};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -104,6 +104,17 @@ impl MeshPhase for MeshNarrowphase {
         local_point: DVec3,
     ) -> Option<MeshBoundaryPoint> {
         nearest_boundary_point(object, prepared, local_point)
+    }
+
+    /// Each component's triangle tree lists its triangles within reach ([`faces_near`]).
+    fn faces_near(
+        &self,
+        object: &ObjectModel,
+        prepared: &PreparedObject,
+        local_point: DVec3,
+        radius: f64,
+    ) -> Vec<FeatureLocation> {
+        faces_near(object, prepared, local_point, radius)
     }
 
     fn query(

@@ -1,6 +1,6 @@
 //! The Stage 2 boundary: the [`MeshPhase`] trait and the types it takes and returns.
 
-use geom_param::{ComponentId, DPose3, ObjectModel, Seed};
+use geom_param::{ComponentId, DPose3, FeatureLocation, ObjectModel, Seed};
 use glam::DVec3;
 
 /// The distance band of the query (mm): contact when `delta1 <= d <= delta2`; `margin` is the
@@ -211,6 +211,22 @@ pub trait MeshPhase {
         prepared: &Self::Prepared,
         local_point: DVec3,
     ) -> Option<MeshBoundaryPoint>;
+
+    /// Every face of the object whose mesh comes within `radius` (mm) of `local_point` (the
+    /// object's own frame), each once, at the exact parameters of its mesh's point nearest to
+    /// `local_point` ([`geom_param::ComponentMesh::locate`]): the starts from which Stage 3
+    /// finds the exact boundary's distance where the meshes cannot tell (a witness's segment
+    /// passing closer to a mesh than its chordal error). Empty when unknown; the default knows
+    /// nothing, and Stage 3 then keeps to the meshes' answer.
+    fn faces_near(
+        &self,
+        _object: &ObjectModel,
+        _prepared: &Self::Prepared,
+        _local_point: DVec3,
+        _radius: f64,
+    ) -> Vec<FeatureLocation> {
+        Vec::new()
+    }
 }
 
 /// What [`MeshPhase::nearest_boundary_point`] returns (the object's frame, mm).

@@ -1,11 +1,13 @@
-//! The nearest point of an object's meshes to a point: [`MeshPhase::nearest_boundary_point`]
-//! of [`crate::MeshNarrowphase`], the query Stage 3's witness check needs.
+//! The nearest point of an object's meshes to a point, and the faces whose meshes come near it:
+//! [`MeshPhase::nearest_boundary_point`] and [`MeshPhase::faces_near`] of
+//! [`crate::MeshNarrowphase`], the queries Stage 3's witness check needs.
 //!
 //! [`MeshPhase::nearest_boundary_point`]: crate::MeshPhase::nearest_boundary_point
+//! [`MeshPhase::faces_near`]: crate::MeshPhase::faces_near
 
 use crate::mesh_phase::MeshBoundaryPoint;
 use crate::prepared_object::PreparedObject;
-use geom_param::{ComponentId, ObjectModel};
+use geom_param::{ComponentId, FeatureLocation, ObjectModel};
 use glam::DVec3;
 
 /// The point of `object`'s component meshes nearest to `local_point` (object frame, mm): each
@@ -47,4 +49,52 @@ pub fn nearest_boundary_point(
         }
     }
     best
+}
+
+/// Every face whose mesh comes within `radius` (mm) of `local_point` (object frame), each once,
+/// at the exact parameters of the nearest point of its triangles ([`MeshPhase::faces_near`]).
+/// Empty for a non-finite point or prepared data of another object.
+///
+/// Kept out of line like [`nearest_boundary_point`].
+///
+/// [`MeshPhase::faces_near`]: crate::MeshPhase::faces_near
+#[inline(never)]
+#[must_use]
+pub fn faces_near(
+    object: &ObjectModel,
+    prepared: &PreparedObject,
+    local_point: DVec3,
+    radius: f64,
+) -> Vec<FeatureLocation> {
+    let mut nearest: Vec<(f64, FeatureLocation)> = Vec::new();
+    if prepared.components.len() != object.meshes.len() {
+        return Vec::new();
+    }
+    for (component, mesh) in prepared.components.iter().zip(&object.meshes) {
+        component.bvh.within(
+            &mesh.positions,
+            &mesh.triangles,
+            local_point,
+            radius,
+            |n| {
+                let triangle = n.triangle as usize;
+                let (Some(&face), true) = (
+                    mesh.triangle_faces.get(triangle),
+                    triangle < mesh.triangle_params.len(),
+                ) else {
+                    return;
+                };
+                let location = mesh.locate(triangle, n.barycentric);
+                let same_face = |l: &FeatureLocation| {
+                    matches!(l, FeatureLocation::Face { id, .. } if *id == face)
+                };
+                match nearest.iter_mut().find(|(_, l)| same_face(l)) {
+                    Some(best) if n.distance < best.0 => *best = (n.distance, location),
+                    Some(_) => {}
+                    None => nearest.push((n.distance, location)),
+                }
+            },
+        );
+    }
+    nearest.into_iter().map(|(_, l)| l).collect()
 }

@@ -106,6 +106,43 @@ impl TriangleBvh {
     }
 }
 
+impl TriangleBvh {
+    /// Calls `visit` with the nearest point of every triangle that comes within `radius` (mm)
+    /// of `point` (mesh frame), in no particular order.
+    pub fn within(
+        &self,
+        positions: &[DVec3],
+        triangles: &[[u32; 3]],
+        point: DVec3,
+        radius: f64,
+        mut visit: impl FnMut(NearestOnMesh),
+    ) {
+        if !(point.is_finite() && radius >= 0.0) {
+            return;
+        }
+        let near = |node: &BvhNode| node.aabb().distance_to_local_point(point, true) <= radius;
+        for leaf in self.bvh.leaves(near) {
+            let Some([a, b, c]) = triangles
+                .get(leaf as usize)
+                .and_then(|t| corners(positions, t))
+            else {
+                continue;
+            };
+            let (proj, location) =
+                Triangle::new(a, b, c).project_local_point_and_get_location(point, false);
+            let distance = proj.point.distance(point);
+            if let (true, Some(barycentric)) = (distance <= radius, barycentric(location)) {
+                visit(NearestOnMesh {
+                    triangle: leaf,
+                    barycentric,
+                    point: proj.point,
+                    distance,
+                });
+            }
+        }
+    }
+}
+
 fn corners(positions: &[DVec3], t: &[u32; 3]) -> Option<[DVec3; 3]> {
     Some([
         *positions.get(t[0] as usize)?,

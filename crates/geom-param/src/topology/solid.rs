@@ -397,6 +397,36 @@ impl Solid {
         out
     }
 
+    /// Whether the feature at `location` lies on face `id`: the face itself, an edge with a
+    /// use on it, or one of its vertices ([`Self::face_vertices`]).
+    #[must_use]
+    pub fn face_holds(&self, id: FaceId, location: &FeatureLocation) -> bool {
+        match *location {
+            FeatureLocation::Face { id: face, .. } => face == id,
+            FeatureLocation::Edge { id: edge, .. } => {
+                self.edge(edge).uses.iter().any(|u| u.face == id)
+            }
+            FeatureLocation::Vertex { id: vertex } => self.face_vertices(id).contains(&vertex),
+        }
+    }
+
+    /// Whether the boundary point at `location` lies on a face that holds `own`
+    /// ([`Self::face_holds`]): on such a face, on an edge of one, or at a vertex of one. The
+    /// faces beside an edge or a vertex are its flanks, which pass near any point in its cone
+    /// of normals.
+    #[must_use]
+    pub fn beside(&self, location: &FeatureLocation, own: &FeatureLocation) -> bool {
+        let holds = |face: FaceId| self.face_holds(face, own);
+        match *location {
+            FeatureLocation::Face { id, .. } => holds(id),
+            FeatureLocation::Edge { id, .. } => self.edge(id).uses.iter().any(|u| holds(u.face)),
+            FeatureLocation::Vertex { id } => (0..self.faces.len()).any(|f| {
+                let face = FaceId(u32::try_from(f).expect("fewer than 2^32 faces"));
+                self.face_vertices(face).contains(&id) && holds(face)
+            }),
+        }
+    }
+
     /// The vertices of face `id`: the ends of its edges and the vertices its sides collapse
     /// into, ascending.
     #[must_use]
