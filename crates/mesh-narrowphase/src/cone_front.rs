@@ -70,38 +70,34 @@ impl ConeFront {
             (true, Some(reference)) => motion(&reference, pose_ab, tree_b),
             _ => f64::INFINITY,
         };
-        // Entries the motion has used up (those tested every query, with negative margins, and
-        // pairs dropped by their cones do not count: a traversal from the root would stop at
-        // them again).
-        let (mut used_up, mut carried) = (0_usize, 0_usize);
-        for e in &self.entries {
-            if e.slack > moved {
-                carried += 1;
-            } else if e.slack >= 0.0 && !e.by_cones {
-                used_up += 1;
+        if moved.is_finite() && self.entries.len() <= MAX_GROWTH * self.fresh.max(1) {
+            // One pass: queue the pairs to test again (a NaN margin too), keep the rest, and
+            // count the entries the motion has used up (those tested every query, with
+            // negative margins, and pairs dropped by their cones do not count: a traversal
+            // from the root would stop at them again).
+            let (mut used_up, mut carried) = (0_usize, 0_usize);
+            self.entries.retain(|e| {
+                let keep = e.slack > moved;
+                if keep {
+                    carried += 1;
+                } else {
+                    used_up += usize::from(e.slack >= 0.0 && !e.by_cones);
+                    out.queue(e.a, e.b);
+                }
+                keep
+            });
+            if (used_up as f64) <= RETEST_FRACTION * (used_up + carried) as f64 {
+                return moved;
             }
+            out.clear();
         }
-        let usable = moved.is_finite()
-            && (used_up as f64) <= RETEST_FRACTION * (used_up + carried) as f64
-            && self.entries.len() <= MAX_GROWTH * self.fresh.max(1);
-        if !usable {
-            self.reference = Some(*pose_ab);
-            self.reach = reach.to_bits();
-            self.trees = trees;
-            self.entries.clear();
-            self.fresh = 0;
-            out.queue(0, 0);
-            return 0.0;
-        }
-        // One pass: queue the pairs to test again (a NaN margin too), keep the rest.
-        self.entries.retain(|e| {
-            let keep = e.slack > moved;
-            if !keep {
-                out.queue(e.a, e.b);
-            }
-            keep
-        });
-        moved
+        self.reference = Some(*pose_ab);
+        self.reach = reach.to_bits();
+        self.trees = trees;
+        self.entries.clear();
+        self.fresh = 0;
+        out.queue(0, 0);
+        0.0
     }
 
     /// Takes the stop pairs of this query's traversal into the front.
