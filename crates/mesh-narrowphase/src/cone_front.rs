@@ -26,6 +26,10 @@ pub struct ConeFront {
     entries: Vec<FrontEntry>,
     /// How many entries the last traversal from the root left.
     fresh: usize,
+    /// How many of the first entries the last query kept (none was tested again), and the
+    /// smallest of their margins: while the motion stays below it, none of them is tested
+    /// again, so only the entries appended since need looking at.
+    settled: (usize, f64),
 }
 
 /// Largest use of the motion certificates before the front is rebuilt from the root: when the
@@ -42,6 +46,7 @@ impl ConeFront {
     pub fn clear(&mut self) {
         self.reference = None;
         self.entries.clear();
+        self.settled = (0, f64::NEG_INFINITY);
     }
 
     /// Prepares `out` (cleared by the caller) for this query of the pair: queues the front's
@@ -70,38 +75,48 @@ impl ConeFront {
             (true, Some(reference)) => motion(&reference, pose_ab, tree_b),
             _ => f64::INFINITY,
         };
-        // Entries the motion has used up (those tested every query, with negative margins, and
-        // pairs dropped by their cones do not count: a traversal from the root would stop at
-        // them again).
-        let (mut used_up, mut carried) = (0_usize, 0_usize);
-        for e in &self.entries {
-            if e.slack > moved {
-                carried += 1;
-            } else if e.slack >= 0.0 && !e.by_cones {
-                used_up += 1;
+        if moved.is_finite() && self.entries.len() <= MAX_GROWTH * self.fresh.max(1) {
+            // One pass over the entries appended since the last query (all of them when the
+            // motion reaches a settled entry's margin): queue the pairs to test again (a NaN
+            // margin too), keep the rest in order, and count the entries the motion has used
+            // up (those tested every query, with negative margins, and pairs dropped by their
+            // cones do not count: a traversal from the root would stop at them again).
+            let (settled, settled_slack) = self.settled;
+            let from = if moved < settled_slack { settled } else { 0 };
+            let (mut used_up, mut carried) = (0_usize, from);
+            let mut least_kept = if from > 0 {
+                settled_slack
+            } else {
+                f64::INFINITY
+            };
+            let mut kept = from;
+            for read in from..self.entries.len() {
+                let e = self.entries[read];
+                if e.slack > moved {
+                    carried += 1;
+                    least_kept = least_kept.min(e.slack);
+                    self.entries[kept] = e;
+                    kept += 1;
+                } else {
+                    used_up += usize::from(e.slack >= 0.0 && !e.by_cones);
+                    out.queue(e.a, e.b);
+                }
             }
-        }
-        let usable = moved.is_finite()
-            && (used_up as f64) <= RETEST_FRACTION * (used_up + carried) as f64
-            && self.entries.len() <= MAX_GROWTH * self.fresh.max(1);
-        if !usable {
-            self.reference = Some(*pose_ab);
-            self.reach = reach.to_bits();
-            self.trees = trees;
-            self.entries.clear();
-            self.fresh = 0;
-            out.queue(0, 0);
-            return 0.0;
-        }
-        // One pass: queue the pairs to test again (a NaN margin too), keep the rest.
-        self.entries.retain(|e| {
-            let keep = e.slack > moved;
-            if !keep {
-                out.queue(e.a, e.b);
+            self.entries.truncate(kept);
+            self.settled = (kept, least_kept);
+            if (used_up as f64) <= RETEST_FRACTION * (used_up + carried) as f64 {
+                return moved;
             }
-            keep
-        });
-        moved
+            out.clear();
+        }
+        self.reference = Some(*pose_ab);
+        self.reach = reach.to_bits();
+        self.trees = trees;
+        self.entries.clear();
+        self.fresh = 0;
+        self.settled = (0, f64::NEG_INFINITY);
+        out.queue(0, 0);
+        0.0
     }
 
     /// Takes the stop pairs of this query's traversal into the front.

@@ -301,6 +301,11 @@ fn piece_deviation(tree: &PatchTree, node: &PatchNode) -> f64 {
 /// (every point of B's component) before the pair is tested again ([`CarriedDrop`]).
 pub const CONE_CARRY: f64 = 0.01;
 
+/// Fraction of the gap between the meshes' volumes of a node pair dropped by its cones by which
+/// B may move at most before the pair is tested again ([`CarriedDrop`]): a pair whose meshes
+/// nearly meet is carried for a motion short of its gap rather than tested every query.
+pub const GAP_CARRY: f64 = 0.5;
+
 /// A node pair dropped because its normal cones allow no critical pair and its meshes cannot
 /// meet, with what the test needs to decide whether the drop survives a motion of B.
 struct CarriedDrop<'n> {
@@ -319,7 +324,8 @@ struct CarriedDrop<'n> {
 
 impl CarriedDrop<'_> {
     /// How far (mm) every point of B may move for the pair to stay dropped: m = [`CONE_CARRY`]
-    /// of the smaller ball radius when the pair still fails the tests with B's ball grown by m
+    /// of the smaller ball radius, or [`GAP_CARRY`] of `gap` where that is less, when the pair
+    /// still fails the tests with B's ball grown by m
     /// (which holds B's moved ball, so that the directions between the balls hold the moved
     /// ones) and B's normal cap and band widened by the largest turn that moves no point of B
     /// by more than m, α = 2 asin(m / 2R) with R B's reach (the front's motion bound counts a
@@ -329,7 +335,7 @@ impl CarriedDrop<'_> {
     /// `moved` is the motion (mm) of B since the front's reference pose, which the margin
     /// must exceed to be of use.
     fn slack(&self, gap: f64, moved: f64) -> f64 {
-        let margin = CONE_CARRY * self.a.radius.min(self.b.radius);
+        let margin = (CONE_CARRY * self.a.radius.min(self.b.radius)).min(GAP_CARRY * gap);
         if !(gap > margin && margin > moved && self.b_reach > 0.0) {
             return -1.0;
         }

@@ -6,7 +6,7 @@ use crate::collision_regions::{IntersectionSegment, RegionScratch, group_regions
 use crate::mesh_phase::{MeshOutput, MeshStats};
 use crate::plane_filter::clearly_apart;
 use crate::query_side::Side;
-use crate::triangle_intersection::{TriangleContact, intersect_triangles, triangles_intersect};
+use crate::triangle_intersection::{TriangleContact, intersect_triangles};
 use geom_param::{DPose3, Seed};
 use glam::DVec3;
 
@@ -30,9 +30,10 @@ pub(crate) fn intersect_candidates(
         };
         let t2 = t2.map(|p| *pose_ab * p);
         stats.triangle_pairs_tested = stats.triangle_pairs_tested.saturating_add(1);
-        // A floating-point plane filter, then the boolean exact test (same decision as the full
-        // one without computing points): cheaper for the many candidates that do not meet.
-        if clearly_apart(&t1, &t2) || !triangles_intersect(&t1, &t2) {
+        // A floating-point plane filter, then the exact test itself: the candidates the filter
+        // leaves mostly meet (a boolean exact test first, the same decision, only doubled their
+        // cost).
+        if clearly_apart(&t1, &t2) {
             continue;
         }
         let segment = |start, end| IntersectionSegment {

@@ -150,6 +150,23 @@ impl NormalCone {
         self.axis.dot(other.axis) >= cos_sum - COSINE_SLACK
     }
 
+    /// [`NormalCone::meets`] for the cap and for its negation (`(self.meets(other),
+    /// self.negated().meets(other))`), from one dot product: the two differ only in the sign
+    /// of `axis · other.axis`, which negating a vector flips exactly.
+    #[must_use]
+    pub fn meets_signed(&self, other: &Self) -> (bool, bool) {
+        if self.is_all() || other.is_all() {
+            return (true, true);
+        }
+        let cos_sum = self.cos * other.cos - self.sin * other.sin;
+        let sin_sum = self.sin * other.cos + self.cos * other.sin;
+        if sin_sum < 0.0 || cos_sum <= -1.0 {
+            return (true, true);
+        }
+        let (dot, limit) = (self.axis.dot(other.axis), cos_sum - COSINE_SLACK);
+        (dot >= limit, -dot >= limit)
+    }
+
     /// The directions from any point of a ball (centre `from`, radius `r_from`) to any point of
     /// another (centre `to`, radius `r_to`): the cap about `to - from` of half-angle
     /// asin((r_from + r_to) / |to - from|), or [`NormalCone::ALL`] when the balls overlap.
@@ -207,9 +224,11 @@ impl CriticalKinds {
                 penetrating: true,
             };
         }
+        let (a_meets, minus_a_meets) = a.meets_signed(directions);
+        let (minus_b_meets, b_meets) = minus_b.meets_signed(directions);
         Self {
-            separated: a.meets(directions) && minus_b.meets(directions),
-            penetrating: a.negated().meets(directions) && b.meets(directions),
+            separated: a_meets && minus_b_meets,
+            penetrating: minus_a_meets && b_meets,
         }
     }
 
@@ -356,6 +375,23 @@ impl NormalBand {
             s * cap.cos + c * cap.sin < 0.0 || c * cap.cos - s * cap.sin <= self.cos_lo + slack;
         below_hi && above_lo
     }
+
+    /// [`NormalBand::meets`] for the band and for its negation (`(self.meets(cap),
+    /// self.negated().meets(cap))`), from one dot product: negating the axis negates c exactly
+    /// and leaves s, so the negated band's sums are the same products with c's negated.
+    #[must_use]
+    pub fn meets_signed(&self, cap: &NormalCone) -> (bool, bool) {
+        if self.is_all() || cap.is_all() {
+            return (true, true);
+        }
+        let c = self.axis.dot(cap.axis).clamp(-1.0, 1.0);
+        let s = (1.0 - c * c).sqrt();
+        let (hi, lo) = (self.cos_hi - COSINE_SLACK, self.cos_lo + COSINE_SLACK);
+        let (cc, ss, sc, cs) = (c * cap.cos, s * cap.sin, s * cap.cos, c * cap.sin);
+        let plus = (c >= cap.cos || cc + ss >= hi) && (sc + cs < 0.0 || cc - ss <= lo);
+        let minus = (-c >= cap.cos || ss - cc >= hi) && (sc - cs < 0.0 || -cc - ss <= lo);
+        (plus, minus)
+    }
 }
 
 /// Where the directions shared by two bands lie ([`NormalBand::shared`]).
@@ -474,41 +510,38 @@ impl CriticalKinds {
             return self;
         }
         let minus_b = b.negated();
-        let (minus_band_a, minus_band_b) = (band_a.negated(), band_b.negated());
+        let minus_band_b = band_b.negated();
         let shared = band_a.meets(&minus_b) && minus_band_b.meets(a);
+        let (band_a_meets, minus_band_a_meets) = band_a.meets_signed(directions);
+        let (minus_band_b_meets, band_b_meets) = minus_band_b.meets_signed(directions);
         let mut kinds = Self {
-            separated: self.separated
-                && shared
-                && band_a.meets(directions)
-                && minus_band_b.meets(directions),
-            penetrating: self.penetrating
-                && shared
-                && minus_band_a.meets(directions)
-                && band_b.meets(directions),
+            separated: self.separated && shared && band_a_meets && minus_band_b_meets,
+            penetrating: self.penetrating && shared && minus_band_a_meets && band_b_meets,
         };
         if !kinds.any() {
             return kinds;
         }
         // A separated minimum's direction d lies in band A and in -band B (n_B = -d); a
         // penetration witness's in -band A and band B, the opposite set. Where the two bands
-        // meet only in two small caps, d must also lie in one of them.
+        // meet only in two small caps, d must also lie in one of them: a cap C for a separated
+        // minimum (with N_A and -N_B), -C for a witness (with -N_A and N_B; -C meets -N_A
+        // exactly when C meets N_A).
         match band_a.shared(&minus_band_b) {
             SharedDirections::None => {
                 kinds.separated = false;
                 kinds.penetrating = false;
             }
             SharedDirections::Within(caps) => {
-                let possible = |cap: &NormalCone, sign: f64| {
-                    let cap = if sign > 0.0 { *cap } else { cap.negated() };
-                    let (na, nb) = if sign > 0.0 {
-                        (*a, minus_b)
-                    } else {
-                        (a.negated(), *b)
-                    };
-                    cap.meets(&na) && cap.meets(&nb) && cap.meets(directions)
-                };
-                kinds.separated &= caps.iter().any(|c| possible(c, 1.0));
-                kinds.penetrating &= caps.iter().any(|c| possible(c, -1.0));
+                let (mut separated, mut penetrating) = (false, false);
+                for cap in &caps {
+                    if cap.meets(a) && cap.meets(&minus_b) {
+                        let (towards, away) = cap.meets_signed(directions);
+                        separated |= towards;
+                        penetrating |= away;
+                    }
+                }
+                kinds.separated &= separated;
+                kinds.penetrating &= penetrating;
             }
             SharedDirections::Anywhere => {}
         }
@@ -544,6 +577,61 @@ mod tests {
                         } else if gap > 1e-5 {
                             assert!(!c1.meets(&c2), "{t1} {t2} {a1} {a2}");
                         }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The signed tests agree bit for bit with testing the cap or band and its negation one
+    /// by one, over caps and bands about axes in general position, opposite and equal, of
+    /// every width (the traversal relies on that: no pair's verdict may change).
+    #[test]
+    fn signed_tests_agree_with_the_negated_ones() {
+        let axes = [
+            DVec3::Z,
+            -DVec3::Z,
+            DVec3::X,
+            DVec3::new(1.0, 1.0, 0.3).normalize(),
+            DVec3::new(-0.2, 1.0, 0.7).normalize(),
+            DVec3::new(1e-9, 0.0, 1.0).normalize(),
+        ];
+        let angles = [
+            0.0,
+            1e-7,
+            0.3,
+            1.2,
+            std::f64::consts::FRAC_PI_2,
+            2.0,
+            3.0,
+            std::f64::consts::PI,
+        ];
+        let ranges = [
+            (0.0, 0.3),
+            (1.2, 1.9),
+            (1.5, 1.5002),
+            (2.5, 3.0),
+            (0.0, 3.2),
+        ];
+        for &a1 in &axes {
+            for &a2 in &axes {
+                for &t1 in &angles {
+                    let c1 = NormalCone::new(a1, t1);
+                    for &t2 in &angles {
+                        let c2 = NormalCone::new(a2, t2);
+                        assert_eq!(
+                            c1.meets_signed(&c2),
+                            (c1.meets(&c2), c1.negated().meets(&c2)),
+                            "{c1:?} {c2:?}"
+                        );
+                    }
+                    for &(lo, hi) in &ranges {
+                        let b = NormalBand::new(a2, lo, hi);
+                        assert_eq!(
+                            b.meets_signed(&c1),
+                            (b.meets(&c1), b.negated().meets(&c1)),
+                            "{b:?} {c1:?}"
+                        );
                     }
                 }
             }
