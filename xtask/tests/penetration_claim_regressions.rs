@@ -478,3 +478,49 @@ fn meridian_distance(solid: &geom_param::Solid, p: DVec3) -> f64 {
     }
     best
 }
+
+/// `soak 2000 --general --seed 13206`, tube-loft 7912923848273877506 (built as two contacts at
+/// 0.060 mm): the oracle of session 14's first rule reported a penetration 21.6 mm "deep"
+/// between the tube's bottom rim (edge 0, z = 0) and the loft's side, taking the rim's point
+/// for a point inside the loft with the loft's side as its nearest boundary point. The
+/// oracle keeps fine samples only within its reach of the other solid, so the loft's nearer
+/// boundary was not sampled there; a pair deeper than that band must now pass the strict test
+/// (no sample of either solid nearer than its distance). Independent check: the rim's point is
+/// outside the loft (ray parity with the loft's mesh), so the pair is no penetration, and the
+/// pipeline's answer, two contacts, stands.
+#[test]
+fn a_rim_point_outside_a_loft_is_no_deep_witness() {
+    let pipeline = ContactPipeline::new(ContactOptions::default()).expect("default options");
+    let objects = prepare_objects(&pipeline).expect("fixture objects build");
+    let (tube, loft) = (&objects["tube"], &objects["loft"]);
+    let pose_b = pose(
+        [1.1598176290315467, 20.29730369229872, 59.62031714963561],
+        [
+            0.4913727774911826,
+            0.8426759824728876,
+            -0.0009816222029540285,
+            0.22011137753829374,
+        ],
+    );
+    let rim_point = DVec3::new(8.88786990980687, 1.4162515547562915, 0.0);
+    assert!(!inside_mesh(&loft.model, pose_b.inverse() * rim_point));
+    let oracle = oracle_report(
+        &tube.model.solid,
+        &loft.model.solid,
+        &pose_b,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
+    assert!(oracle.min_distance > 0.0, "{:?}", oracle.contacts);
+    let report = pipeline
+        .query(
+            tube,
+            &DPose3::IDENTITY,
+            loft,
+            &pose_b,
+            &mut QueryScratch::default(),
+        )
+        .expect("unit quaternion");
+    assert_eq!(report.state, PairState::Contact, "{report:?}");
+    assert_eq!(report.contacts.len(), 2, "{report:?}");
+}

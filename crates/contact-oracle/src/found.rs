@@ -152,18 +152,29 @@ pub(crate) fn merge(into: &mut Vec<OracleContact>, c: OracleContact, radius: f64
 /// the other solid from the nearest sample of each of its faces within d plus two spacings
 /// (`spacing`, mm; [`nearer_point`]). A margin of 10 x the stationarity tolerance (mm) keeps the pair's
 /// own points from counting, so a touching pair (d within it) is never dropped.
+///
+/// Fine samples exist only within `keep` (mm) of the other solid, so a nearer point beyond
+/// that band can go unseen: a pair deeper than `keep` less two spacings must pass the strict
+/// test instead, no sample of either solid nearer than d (a tube's rim point taken for a point
+/// 21.6 mm inside a loft, tube-loft 7912923848273877506 of `soak 2000 --general --seed 13206`).
 pub(crate) fn through_material(
     (a, b): (&PosedSolid, &PosedSolid),
     pair: &Pair,
     (tree_a, tree_b): (&KdTree, &KdTree),
     (samples_a, samples_b): (&[Sample], &[Sample]),
-    spacing: f64,
+    (spacing, keep): (f64, f64),
     limits: &Limits,
 ) -> bool {
     let e = polish::evaluate(a, b, pair);
     let limit = e.r.length() - 10.0 * limits.tolerance;
     if limit <= 0.0 {
         return false;
+    }
+    if limit > keep - 2.0 * spacing {
+        // Deeper than the sampled band: a nearer point may lie where nothing was sampled, so
+        // the pair must pass the strict test, no sample of either solid nearer.
+        return tree_a.nearest_within(e.pb.point, limit).is_some()
+            || tree_b.nearest_within(e.pa.point, limit).is_some();
     }
     // S_b inside A at depth d: r = S_a − S_b points out of A at S_a.
     let b_inside_a = a

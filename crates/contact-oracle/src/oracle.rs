@@ -162,7 +162,14 @@ fn run(
                 let p = local_minima::deeper_corner(a, b, *p, &limits, signed);
                 let negative = is_negative(a, &p, options.tolerance);
                 let through = if negative {
-                    through_material((a, b), &p.pair, (&ta, &tb), (&sa, &sb), spacing, &limits)
+                    through_material(
+                        (a, b),
+                        &p.pair,
+                        (&ta, &tb),
+                        (&sa, &sb),
+                        (spacing, keep),
+                        &limits,
+                    )
                 } else {
                     separated_through_material((a, b), &p.pair, (&ta, &tb), (&sa, &sb), &limits)
                 };
@@ -209,7 +216,14 @@ fn run(
             let residual = polish::residual(&e, pair.dims(), [false; 4]);
             // A witness is a pair of mutually nearest boundary points: one measured past a
             // nearer part of either surface is a depth through the material, not a witness.
-            if through_material((a, b), &pair, (&ta, &tb), (&sa, &sb), spacing, &limits) {
+            if through_material(
+                (a, b),
+                &pair,
+                (&ta, &tb),
+                (&sa, &sb),
+                (spacing, keep),
+                &limits,
+            ) {
                 continue;
             }
             // And a witness overlaps: A's point behind B's outward side and B's behind A's
