@@ -30,8 +30,9 @@
 //! 4. Penetration: the deepest inside sample of each overlap region, and every crossing the
 //!    minimum search met, start a descent of A's signed distance to B; its minimum is the
 //!    witness, polished by plain Newton on ∇f = 0; from both sides (`penetration`). A witness
-//!    must be a pair of mutually nearest boundary points: one with a sample of either solid
-//!    nearer to the other's point than their distance is a depth through the material and is
+//!    must have one point inside the other solid with the other point as its nearest boundary
+//!    point (samples and projections onto the exact faces; beyond the sampled band, no sample
+//!    of either solid nearer); otherwise it is a depth through the material and is
 //!    dropped (a separated minimum only where its segment passes behind that nearer part,
 //!    `found::separated_through_material`). The
 //!    descent moves over trims, edges and vertices as the polish does (not across the sides

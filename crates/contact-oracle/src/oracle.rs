@@ -214,8 +214,8 @@ fn run(
             let pair = if swapped { swap(&w.pair) } else { w.pair };
             let e = polish::evaluate(a, b, &pair);
             let residual = polish::residual(&e, pair.dims(), [false; 4]);
-            // A witness is a pair of mutually nearest boundary points: one measured past a
-            // nearer part of either surface is a depth through the material, not a witness.
+            // A witness has one point inside the other solid with the other point as its
+            // nearest boundary point; otherwise it is a depth through the material.
             if through_material(
                 (a, b),
                 &pair,

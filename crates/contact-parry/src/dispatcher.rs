@@ -56,7 +56,8 @@ pub struct DispatcherOptions {
 /// points come back in each shape's own frame, normals from the first shape to the second;
 /// lengths in the shapes' unit, which is the pipeline's millimetre (see [`ExactShape`]).
 /// Distances are the pipeline's: exact (Stage 3 converged on the exact surfaces) and signed,
-/// negative for a penetration depth (the deepest pair of mutually nearest boundary points).
+/// negative for a penetration depth (a point of one shape inside the other, to its nearest
+/// boundary point: the pipeline's witness).
 ///
 /// Not supported (always `Unsupported`, whatever [`BeyondReach`] says): shape casts (linear and
 /// nonlinear time of impact), exact shapes inside a parry `Compound` (parry's compound code

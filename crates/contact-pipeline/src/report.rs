@@ -33,13 +33,12 @@ pub enum PairState {
 /// reports one contact per connected region found (seeds refined into the same region, on the
 /// same pair of features at the same distance with the same normal, are merged).
 ///
-/// A penetration contact is the region's exact penetration witness: the deepest pair of
-/// mutually nearest boundary points with opposed normals (a local minimum of the signed
-/// distance; `point_a` on A's boundary inside B, `point_b` on B's boundary inside A), so
-/// `-distance` is the depth along `normal` that separates the region: moving B by
-/// `-distance * normal` brings the pair to touch. "Mutually nearest" is certified by Stage 3
-/// against Stage 2's meshes (`exact_refine::check_witness`): the segment between the points
-/// meets no other part of either boundary beyond the meshes' chordal error.
+/// A penetration contact is the region's exact penetration witness: a critical pair with
+/// opposed normals, one of whose points lies inside the other solid with the other point as
+/// its nearest boundary point (between two edges or vertices, the other point's flanks left
+/// out), so `-distance` is that point's depth along `normal`: moving B by `-distance * normal`
+/// brings the pair to touch. Stage 3 certifies it against Stage 2's meshes and, where they
+/// cannot decide, the exact faces they list near the point (`exact_refine::check_witness`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Contact {
     /// Closest point on object A (world frame, mm); for a penetration, A's point of the

@@ -1,5 +1,6 @@
 //! Penetration depths against closed forms: every penetration region is reported as a contact
-//! with negative distance, the exact deepest pair of mutually nearest boundary points (sphere
+//! with negative distance, the exact witness: a point of one solid inside the other and its
+//! nearest boundary point (sphere
 //! into sphere, a ball into a plane, a ball into a tube's bore wall, two crossed cylinders, a
 //! tilted torus into a plane), in both orders, with the contact invariants:
 //! point_b = point_a + distance * normal, the normal A's outward normal at point_a.

@@ -47,11 +47,11 @@ pub trait Refiner {
         scratch: &mut Self::Scratch,
     ) -> RefinedContact;
 
-    /// Whether a penetrating result of [`Self::refine`] (`witness.distance < 0`) is a pair of
-    /// mutually nearest boundary points: the segment `point_a` `point_b` meets B's boundary
-    /// only at `point_b` and A's only at `point_a`, up to the error bounds of `near_a` (A's
-    /// boundary, queried in A's frame) and `near_b` (B's, queried in B's own frame); see
-    /// [`check_witness`], which the default implementation calls. A refiner sees two features
+    /// Whether a penetrating result of [`Self::refine`] (`witness.distance < 0`) is a witness:
+    /// one of its points lies inside the other solid with the other point as its nearest
+    /// boundary point, against `near_a` (A's boundary, queried in A's frame) and `near_b`
+    /// (B's, queried in B's own frame); see [`check_witness`], which the default
+    /// implementation calls. A refiner sees two features
     /// only, so this needs a query over each whole boundary: the pipeline passes Stage 2's
     /// meshes ([`NearestBoundary`]). A pair that fails is measured through the material and is
     /// no penetration witness ([`WitnessCheck::ThroughMaterial`]).
