@@ -150,8 +150,8 @@ pub(crate) fn merge(into: &mut Vec<OracleContact>, c: OracleContact, radius: f64
 /// A nearer point is a sample of the other solid (samples lie on the exact surfaces) or, since
 /// a sample is up to about a spacing from the surface point it stands for, S_x projected onto
 /// the other solid from the nearest sample of each of its faces within d plus two spacings
-/// (`spacing`, mm; [`nearer_point`]). A margin of 10 x the stationarity tolerance (mm) keeps the pair's
-/// own points from counting, so a touching pair (d within it) is never dropped.
+/// (`spacing`, mm; [`nearer_point`]). A margin of 10 x the stationarity tolerance (mm) keeps
+/// the pair's own points from counting, so a touching pair (d within it) is never dropped.
 ///
 /// Fine samples exist only within `keep` (mm) of the other solid, so a nearer point beyond
 /// that band can go unseen: a pair deeper than `keep` less two spacings must pass the strict
@@ -225,11 +225,22 @@ fn nearer_point(
         }
     });
     per_face.iter().any(|&(_, k)| {
-        let mut start = *pair;
-        (start.fa, start.a, start.held_a) = (samples[k].face, samples[k].uv, Held::Face);
-        let projected = polish::minimise(x, y, start, [true, true, false, false], limits);
+        let projected = project_from((x, y), pair, &samples[k], limits);
         projected.converged && projected.eval.r.length() < limit
     })
+}
+
+/// y's point of `pair` projected onto x (`solids.0`, its point first in `pair`) from `sample`
+/// of x: the polish with y's parameters held.
+fn project_from(
+    (x, y): (&PosedSolid, &PosedSolid),
+    pair: &Pair,
+    sample: &Sample,
+    limits: &Limits,
+) -> Polished {
+    let mut start = *pair;
+    (start.fa, start.a, start.held_a) = (sample.face, sample.uv, Held::Face);
+    polish::minimise(x, y, start, [true, true, false, false], limits)
 }
 
 /// [`through_material`] for a separated minimum `pair`: a nearer part of a surface disproves it
@@ -285,9 +296,7 @@ fn behind_nearer_part(
     });
     nearer.sort_by(|p, q| p.0.total_cmp(&q.0));
     nearer.iter().take(NEARER_STARTS).any(|&(_, k)| {
-        let mut start = *pair;
-        (start.fa, start.a, start.held_a) = (samples[k].face, samples[k].uv, Held::Face);
-        let projected = polish::minimise(x, y, start, [true, true, false, false], limits);
+        let projected = project_from((x, y), pair, &samples[k], limits);
         if !projected.converged {
             return true;
         }

@@ -88,25 +88,13 @@ impl TriangleBvh {
             max_distance,
             |node: &BvhNode, _| node.aabb().distance_to_local_point(point, true),
             |leaf, _| {
-                let [a, b, c] = corners(positions, triangles.get(leaf as usize)?)?;
-                let (proj, location) =
-                    Triangle::new(a, b, c).project_local_point_and_get_location(point, false);
-                let barycentric = barycentric(location)?;
-                Some((proj.point.distance(point), (barycentric, proj.point)))
+                let n = nearest_on_triangle(positions, triangles, leaf, point)?;
+                Some((n.distance, n))
             },
         );
-        found.map(
-            |(triangle, (distance, (barycentric, point)))| NearestOnMesh {
-                triangle,
-                barycentric,
-                point,
-                distance,
-            },
-        )
+        found.map(|(_, (_, n))| n)
     }
-}
 
-impl TriangleBvh {
     /// Calls `visit` with the nearest point of every triangle that comes within `radius` (mm)
     /// of `point` (mesh frame), in no particular order.
     pub fn within(
@@ -122,25 +110,32 @@ impl TriangleBvh {
         }
         let near = |node: &BvhNode| node.aabb().distance_to_local_point(point, true) <= radius;
         for leaf in self.bvh.leaves(near) {
-            let Some([a, b, c]) = triangles
-                .get(leaf as usize)
-                .and_then(|t| corners(positions, t))
-            else {
-                continue;
-            };
-            let (proj, location) =
-                Triangle::new(a, b, c).project_local_point_and_get_location(point, false);
-            let distance = proj.point.distance(point);
-            if let (true, Some(barycentric)) = (distance <= radius, barycentric(location)) {
-                visit(NearestOnMesh {
-                    triangle: leaf,
-                    barycentric,
-                    point: proj.point,
-                    distance,
-                });
+            if let Some(n) = nearest_on_triangle(positions, triangles, leaf, point)
+                .filter(|n| n.distance <= radius)
+            {
+                visit(n);
             }
         }
     }
+}
+
+/// The point of triangle `leaf` nearest to `point`; `None` for an index out of range or a
+/// degenerate location.
+fn nearest_on_triangle(
+    positions: &[DVec3],
+    triangles: &[[u32; 3]],
+    leaf: u32,
+    point: DVec3,
+) -> Option<NearestOnMesh> {
+    let [a, b, c] = corners(positions, triangles.get(leaf as usize)?)?;
+    let (proj, location) =
+        Triangle::new(a, b, c).project_local_point_and_get_location(point, false);
+    Some(NearestOnMesh {
+        triangle: leaf,
+        barycentric: barycentric(location)?,
+        point: proj.point,
+        distance: proj.point.distance(point),
+    })
 }
 
 fn corners(positions: &[DVec3], t: &[u32; 3]) -> Option<[DVec3; 3]> {

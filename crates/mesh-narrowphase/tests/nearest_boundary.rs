@@ -31,12 +31,7 @@ fn nearest_boundary_point_matches_the_closed_form_within_the_chordal_error() {
     let bowl = Prepared::new(socket(inner, outer, zc, 0.02));
     assert!(bowl.object.components.len() >= 2);
     let phase = MeshNarrowphase::default();
-    let chordal = bowl
-        .object
-        .meshes
-        .iter()
-        .map(|m| m.chordal_error)
-        .fold(0.0, f64::max);
+    let chordal = largest_chordal_error(&bowl);
     let mut rng = Rng(7);
     let mut worst: f64 = 0.0;
     for _ in 0..400 {
@@ -80,12 +75,7 @@ fn faces_near_lists_every_face_within_reach() {
     let bowl = Prepared::new(socket(inner, outer, zc, 0.02));
     let phase = MeshNarrowphase::default();
     let solid = &bowl.object.solid;
-    let chordal = bowl
-        .object
-        .meshes
-        .iter()
-        .map(|m| m.chordal_error)
-        .fold(0.0, f64::max);
+    let chordal = largest_chordal_error(&bowl);
     let centre = DVec3::new(0.0, 0.0, zc);
     // Which surface a face lies on, from its point in mid-domain.
     let kind = |face: geom_param::FaceId| {
@@ -153,4 +143,14 @@ fn faces_near_lists_every_face_within_reach() {
     }
     // Not vacuous: many points have faces they must list.
     assert!(required > 30, "{required}");
+}
+
+/// The largest chordal error of the prepared object's component meshes (mm).
+fn largest_chordal_error(prepared: &Prepared) -> f64 {
+    prepared
+        .object
+        .meshes
+        .iter()
+        .map(|m| m.chordal_error)
+        .fold(0.0, f64::max)
 }
