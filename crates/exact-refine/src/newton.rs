@@ -33,7 +33,8 @@ use crate::feature_switch::{
 };
 use crate::options::NewtonOptions;
 use crate::penetration::{
-    edge_face_witness, edge_pair_witness, saddle_newton, solve_penetration, solve_penetration_from,
+    edge_face_witness, edge_pair_minimum, edge_pair_witness, saddle_newton, solve_penetration,
+    solve_penetration_from,
 };
 use crate::sym_eigen::{SymEigen, sym_eigen};
 use geom_param::{DVec3, FeatureLocation, ParamRange};
@@ -582,10 +583,11 @@ fn separated_end(
     }
 }
 
-/// The touch of two edges near (`la`, `lb`), both edges (`None` otherwise): f minimised over
-/// the two edge parameters without leaving them, then polished with re-entry allowed; the
-/// polished pair when both converge and its gap is within rounding (|d| ≤ 1e3 ε x scale,
-/// where [`State::sign`] calls a pair touching). `None` otherwise.
+/// The touch of two edges near (`la`, `lb`): their pair minimum ([`edge_pair_minimum`]) when
+/// its gap is within rounding (|d| ≤ 1e3 ε x scale, where [`State::sign`] calls a pair
+/// touching); `None` otherwise. (Not re-entered into the faces: there f can fall by rounding
+/// into a face that the other edge crosses within rounding of its boundary, an end that is no
+/// local minimum.)
 ///
 /// Why: two edges crossing within rounding of each other (a goblet rim's inner circle under a
 /// vase's bottom circle at 1.3e-11 mm, goblet-vase 2504669063869504659 of
@@ -602,14 +604,8 @@ fn edge_pair_touch(
     base_scale: f64,
     options: &NewtonOptions,
 ) -> Option<Solution> {
-    let on_edge = |l: &Loc| matches!(l, Some(FeatureLocation::Edge { .. }));
-    if !(on_edge(&la) && on_edge(&lb)) {
-        return None;
-    }
-    let closest = minimize(a, b, la, lb, base_scale, options, Reentry::Never);
-    let end = &closest.state;
-    (closest.outcome == Outcome::Converged && end.d.length() <= 1e3 * EPS * end.scale)
-        .then_some(closest)
+    edge_pair_minimum(a, b, la, lb, base_scale, options)
+        .filter(|closest| closest.state.d.length() <= 1e3 * EPS * closest.state.scale)
 }
 
 /// The witness between two edges ([`edge_pair_witness`]) started from each point of `state`

@@ -314,17 +314,28 @@ pub(crate) fn edge_pair_witness(
     base_scale: f64,
     options: &NewtonOptions,
 ) -> Option<Solution> {
+    let closest = edge_pair_minimum(a, b, la, lb, base_scale, options)?;
+    let mut witness = saddle_newton(a, b, &closest.state, base_scale, options)?;
+    witness.iterations += closest.iterations;
+    Some(witness)
+}
+
+/// f minimised over the parameters of two edges from (`la`, `lb`) without leaving them, when
+/// both are edges and the minimisation converges; `None` otherwise.
+pub(crate) fn edge_pair_minimum(
+    a: &Body,
+    b: &Body,
+    la: Loc,
+    lb: Loc,
+    base_scale: f64,
+    options: &NewtonOptions,
+) -> Option<Solution> {
     let on_edge = |l: &Loc| matches!(l, Some(FeatureLocation::Edge { .. }));
     if !(on_edge(&la) && on_edge(&lb)) {
         return None;
     }
     let closest = minimize(a, b, la, lb, base_scale, options, Reentry::Never);
-    if closest.outcome != Outcome::Converged {
-        return None;
-    }
-    let mut witness = saddle_newton(a, b, &closest.state, base_scale, options)?;
-    witness.iterations += closest.iterations;
-    Some(witness)
+    (closest.outcome == Outcome::Converged).then_some(closest)
 }
 
 /// The witness between an edge and the other side's face, from `la`, `lb` (one an edge, the
