@@ -15,43 +15,86 @@ pub struct WarmStart {
     pub vertex_a: u32,
     /// Last support vertex on B's hull.
     pub vertex_b: u32,
-    /// The last query's final simplex: its first `simplex_len` points, each a vertex of A's
-    /// hull in A's frame and a vertex of B's hull in B's frame.
-    pub simplex: [[DVec3; 2]; 4],
-    /// How many points of `simplex` hold (0: none yet).
+    /// The last query's final simplex: its first `simplex_len` points, each a pair of hull
+    /// vertices (A's index, B's index).
+    pub simplex: [[u32; 2]; 4],
+    /// How many points of `simplex` hold (0: none).
     pub simplex_len: usize,
 }
 
 impl WarmStart {
-    /// Puts the last query's final simplex, posed by `pose_ab`, into `simplex` (every point is
-    /// a pair of hull vertices, so a point of the hulls' Minkowski difference at any pose);
-    /// false when there is none.
+    /// Puts the last query's final simplex into `simplex`, its vertices taken from the hulls
+    /// (B's posed by `pose_ab`); false when there is none. Any pair of hull vertices is a point
+    /// of the hulls' Minkowski difference, at any pose and whatever hulls the indices came
+    /// from (a start left by other hulls only starts GJK elsewhere): an index out of range
+    /// leaves the start to the last direction.
     ///
     /// Why: GJK between two nearly parallel flat faces (two plates 0.05 mm apart, tilted by
-    /// 0.01-0.03 rad) spends 30 iterations building its simplex from a support point in the
+    /// 0.01-0.03 rad) spent 30 iterations building its simplex from a support point in the
     /// last direction, which is any vertex of the face; each iteration walks both plates'
     /// flat hulls. From the last simplex it starts next to the answer.
-    fn restore(&self, pose_ab: &DPose3, simplex: &mut VoronoiSimplex) -> bool {
-        let posed = |[a, b]: [DVec3; 2]| CsoPoint::new(a, *pose_ab * b);
-        let Some((&first, rest)) = self.simplex[..self.simplex_len.min(4)].split_first() else {
+    fn restore(
+        &self,
+        (hull_a, hull_b): (&ConvexHull, &ConvexHull),
+        pose_ab: &DPose3,
+        simplex: &mut VoronoiSimplex,
+    ) -> bool {
+        let posed = |[a, b]: [u32; 2]| {
+            let a = hull_a.points.get(a as usize)?;
+            let b = hull_b.points.get(b as usize)?;
+            Some(CsoPoint::new(*a, *pose_ab * *b))
+        };
+        let points = &self.simplex[..self.simplex_len.min(4)];
+        let Some(first) = points.first().and_then(|&p| posed(p)) else {
             return false;
         };
-        simplex.reset(posed(first));
-        for &point in rest {
+        simplex.reset(first);
+        for &point in &points[1..] {
             // A point degenerate with the others at this pose is left out.
-            simplex.add_point(posed(point));
+            if let Some(point) = posed(point) {
+                simplex.add_point(point);
+            }
         }
         true
     }
 
-    /// Keeps `simplex`'s points (B's posed by `pose_ab` in A's frame) for [`Self::restore`].
-    fn keep(&mut self, pose_ab: &DPose3, simplex: &VoronoiSimplex) {
-        let inverse = pose_ab.inverse();
-        self.simplex_len = simplex.dimension() + 1;
-        for i in 0..self.simplex_len {
+    /// Keeps `simplex`'s points as hull vertex indices for [`Self::restore`], found among the
+    /// support maps' recent answers and the restored start (`self`): A's point is a hull
+    /// vertex to the bit, B's one posed by `pose_ab` (the same product as the support map's,
+    /// within rounding of it). Where a point is not found, no simplex is kept.
+    fn keep(
+        &mut self,
+        (sa, sb): (&HillClimbSupport<'_>, &HillClimbSupport<'_>),
+        (hull_a, hull_b): (&ConvexHull, &ConvexHull),
+        pose_ab: &DPose3,
+        simplex: &VoronoiSimplex,
+    ) {
+        let restored = self.simplex;
+        let restored = &restored[..self.simplex_len.min(4)];
+        let candidates_a = restored.iter().map(|p| p[0]).chain(sa.recent());
+        let candidates_b = restored.iter().map(|p| p[1]).chain(sb.recent());
+        let mut kept = [[0; 2]; 4];
+        let len = simplex.dimension() + 1;
+        for (i, slot) in kept.iter_mut().enumerate().take(len) {
             let point = simplex.point(i);
-            self.simplex[i] = [point.orig1, inverse * point.orig2];
+            let a = candidates_a
+                .clone()
+                .find(|&k| hull_a.points.get(k as usize) == Some(&point.orig1));
+            let rounding = 1e-12 * (1.0 + point.orig2.length());
+            let b = candidates_b.clone().find(|&k| {
+                hull_b
+                    .points
+                    .get(k as usize)
+                    .is_some_and(|p| (*pose_ab * *p).distance(point.orig2) <= rounding)
+            });
+            let (Some(a), Some(b)) = (a, b) else {
+                self.simplex_len = 0;
+                return;
+            };
+            *slot = [a, b];
         }
+        self.simplex = kept;
+        self.simplex_len = len;
     }
 }
 
@@ -103,11 +146,11 @@ pub fn hull_proximity(
         .try_normalize()
         .or_else(|| (-pose_ab.translation).try_normalize())
         .unwrap_or(DVec3::X);
-    if !warm.restore(pose_ab, simplex) {
+    if !warm.restore((hull_a, hull_b), pose_ab, simplex) {
         simplex.reset(CsoPoint::from_shapes(pose_ab, &sa, &sb, dir));
     }
     let result = gjk::closest_points(pose_ab, &sa, &sb, max_distance, true, simplex);
-    warm.keep(pose_ab, simplex);
+    warm.keep((&sa, &sb), (hull_a, hull_b), pose_ab, simplex);
     let verdict = match result {
         GJKResult::ClosestPoints(p1, p2, n) => {
             warm.dir = n;

@@ -19,7 +19,13 @@ pub struct HillClimbSupport<'a> {
     hull: &'a ConvexHull,
     current: Cell<u32>,
     evaluations: Cell<u32>,
+    /// The vertices of the last [`SUPPORT_LOG`] answers, in a ring indexed by `evaluations`.
+    log: Cell<[u32; SUPPORT_LOG]>,
 }
+
+/// How many recent answers [`HillClimbSupport::recent`] lists: more than the points of a GJK
+/// simplex, so that a final simplex built from the last answers is found among them.
+pub const SUPPORT_LOG: usize = 16;
 
 impl<'a> HillClimbSupport<'a> {
     /// A support map over `hull` whose first walk starts at hull vertex `start` (taken modulo
@@ -31,7 +37,15 @@ impl<'a> HillClimbSupport<'a> {
             hull,
             current: Cell::new(start % n),
             evaluations: Cell::new(0),
+            log: Cell::new([start % n; SUPPORT_LOG]),
         }
+    }
+
+    /// The hull vertices of the last answers (up to [`SUPPORT_LOG`] of them, in no particular
+    /// order; the start vertex where fewer were asked for).
+    #[must_use]
+    pub fn recent(&self) -> [u32; SUPPORT_LOG] {
+        self.log.get()
     }
 
     /// The hull vertex the last walk ended at (the warm start of the next one).
@@ -72,6 +86,9 @@ impl<'a> HillClimbSupport<'a> {
             }
         }
         self.current.set(best);
+        let mut log = self.log.get();
+        log[self.evaluations.get() as usize % SUPPORT_LOG] = best;
+        self.log.set(log);
         best
     }
 }

@@ -306,3 +306,45 @@ fn a_warm_simplex_answers_nearly_parallel_caps_again_in_fewer_evaluations() {
         );
     }
 }
+
+/// A warm start left by other hulls (a scratch whose pair key came back for other objects)
+/// only starts GJK elsewhere: its simplex holds vertex indices, read from the hulls at hand, so
+/// every restored point is a point of their Minkowski difference. One warm start carried
+/// across 200 queries of different hull pairs gives parry's distance every time.
+#[test]
+fn a_warm_start_left_by_other_hulls_gives_the_same_distances() {
+    let all = hulls(&["paperweight", "goblet", "vase", "pencil", "jar"], 0.05);
+    let mut rng = Rng(17);
+    let mut scratch = GjkScratch::default();
+    let mut warm = WarmStart::default();
+    let mut close = 0;
+    for k in 0..200 {
+        let (na, ha) = &all[(k * 3) % all.len()];
+        let (nb, hb) = &all[(k * 5 + 1) % all.len()];
+        let pa = ConvexPolyhedron::from_convex_hull(&ha.points).expect("hull");
+        let pb = ConvexPolyhedron::from_convex_hull(&hb.points).expect("hull");
+        let pose = pose(
+            rng.rotation(),
+            rng.rotation() * DVec3::new(rng.range(0.0, 130.0), 0.0, 0.0),
+        );
+        let truth = query::distance(&pose_identity(), &pa, &pose, &pb)
+            .expect("supported")
+            .distance;
+        let size = 200.0;
+        let (got, _) = hull_proximity(ha, hb, &pose, 20.0, 1e-7 * size, &mut warm, &mut scratch);
+        match got {
+            HullProximity::Close { p1, p2 } => {
+                close += 1;
+                let d = p1.distance(p2);
+                assert!(
+                    (d - truth).abs() <= 1e-6 * size,
+                    "{na} vs {nb}: {d} vs {truth}"
+                );
+            }
+            HullProximity::Overlapping => assert!(truth <= 1e-6 * size, "{na} vs {nb}: {truth}"),
+            HullProximity::Separated => assert!(truth > 20.0, "{na} vs {nb}: {truth}"),
+            HullProximity::NotConverged => panic!("{na} vs {nb}: not converged"),
+        }
+    }
+    assert!(close >= 10, "too few close pairs: {close}");
+}
