@@ -60,8 +60,8 @@ impl WarmStart {
 
     /// Keeps `simplex`'s points as hull vertex indices for [`Self::restore`], found among the
     /// support maps' recent answers and the restored start (`self`): A's point is a hull
-    /// vertex to the bit, B's one posed by `pose_ab` (the same product as the support map's,
-    /// within rounding of it). Where a point is not found, no simplex is kept.
+    /// vertex to the bit, B's one posed by `pose_ab` (brought back to B's frame, within
+    /// rounding of the vertex). Where a point is not found, no simplex is kept.
     fn keep(
         &mut self,
         (sa, sb): (&HillClimbSupport<'_>, &HillClimbSupport<'_>),
@@ -73,6 +73,7 @@ impl WarmStart {
         let restored = &restored[..self.simplex_len.min(4)];
         let candidates_a = restored.iter().map(|p| p[0]).chain(sa.recent());
         let candidates_b = restored.iter().map(|p| p[1]).chain(sb.recent());
+        let inverse = pose_ab.inverse();
         let mut kept = [[0; 2]; 4];
         let len = simplex.dimension() + 1;
         for (i, slot) in kept.iter_mut().enumerate().take(len) {
@@ -80,12 +81,13 @@ impl WarmStart {
             let a = candidates_a
                 .clone()
                 .find(|&k| hull_a.points.get(k as usize) == Some(&point.orig1));
-            let rounding = 1e-12 * (1.0 + point.orig2.length());
+            let on_b = inverse * point.orig2;
+            let rounding = 1e-12 * (1.0 + point.orig2.length() + pose_ab.translation.length());
             let b = candidates_b.clone().find(|&k| {
                 hull_b
                     .points
                     .get(k as usize)
-                    .is_some_and(|p| (*pose_ab * *p).distance(point.orig2) <= rounding)
+                    .is_some_and(|p| p.distance(on_b) <= rounding)
             });
             let (Some(a), Some(b)) = (a, b) else {
                 self.simplex_len = 0;

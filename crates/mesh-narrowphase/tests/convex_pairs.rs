@@ -45,6 +45,25 @@ fn hill_climbing_support_matches_brute_force_scan() {
     }
 }
 
+/// A random pose of B (a random rotation, its origin up to 130 mm from A's in a random
+/// direction) and the distance of the two hulls there by parry's `ConvexPolyhedron`.
+fn random_pose_and_parry_distance(
+    rng: &mut Rng,
+    ha: &ConvexHull,
+    hb: &ConvexHull,
+) -> (geom_param::DPose3, f64) {
+    let pa = ConvexPolyhedron::from_convex_hull(&ha.points).expect("hull");
+    let pb = ConvexPolyhedron::from_convex_hull(&hb.points).expect("hull");
+    let pose = pose(
+        rng.rotation(),
+        rng.rotation() * DVec3::new(rng.range(0.0, 130.0), 0.0, 0.0),
+    );
+    let truth = query::distance(&pose_identity(), &pa, &pose, &pb)
+        .expect("supported")
+        .distance;
+    (pose, truth)
+}
+
 #[test]
 fn gjk_with_hill_climbing_agrees_with_parry_convex_polyhedron() {
     let all = hulls(&["paperweight", "goblet", "vase", "pencil", "jar"], 0.05);
@@ -54,15 +73,7 @@ fn gjk_with_hill_climbing_agrees_with_parry_convex_polyhedron() {
     for k in 0..400 {
         let (na, ha) = &all[k % all.len()];
         let (nb, hb) = &all[(k * 7 + 3) % all.len()];
-        let pa = ConvexPolyhedron::from_convex_hull(&ha.points).expect("hull");
-        let pb = ConvexPolyhedron::from_convex_hull(&hb.points).expect("hull");
-        let pose = pose(
-            rng.rotation(),
-            rng.rotation() * DVec3::new(rng.range(0.0, 130.0), 0.0, 0.0),
-        );
-        let truth = query::distance(&pose_identity(), &pa, &pose, &pb)
-            .expect("supported")
-            .distance;
+        let (pose, truth) = random_pose_and_parry_distance(&mut rng, ha, hb);
         let max_distance = 20.0;
         let size = 200.0;
         let mut warm = WarmStart::default();
@@ -321,15 +332,7 @@ fn a_warm_start_left_by_other_hulls_gives_the_same_distances() {
     for k in 0..200 {
         let (na, ha) = &all[(k * 3) % all.len()];
         let (nb, hb) = &all[(k * 5 + 1) % all.len()];
-        let pa = ConvexPolyhedron::from_convex_hull(&ha.points).expect("hull");
-        let pb = ConvexPolyhedron::from_convex_hull(&hb.points).expect("hull");
-        let pose = pose(
-            rng.rotation(),
-            rng.rotation() * DVec3::new(rng.range(0.0, 130.0), 0.0, 0.0),
-        );
-        let truth = query::distance(&pose_identity(), &pa, &pose, &pb)
-            .expect("supported")
-            .distance;
+        let (pose, truth) = random_pose_and_parry_distance(&mut rng, ha, hb);
         let size = 200.0;
         let (got, _) = hull_proximity(ha, hb, &pose, 20.0, 1e-7 * size, &mut warm, &mut scratch);
         match got {
