@@ -4,10 +4,15 @@
 //!
 //! A node pair dropped because its volumes were `s` farther apart than the reach stays dropped
 //! while B moves by less than `s`: the distance between two sets shrinks by at most the motion
-//! of either. So a query only re-tests the front's other pairs (dropped by cones, certified,
-//! leaves) and those whose margin the motion since the front's reference pose has used up, and
-//! descends from them as a fresh traversal would. Whatever the pose, the answer is the one the
-//! traversal from the root gives, up to which of equally valid stopping pairs it reaches.
+//! of either. Pairs dropped by their cones carry a margin of their own
+//! ([`crate::cone_traversal::CONE_CARRY`]), and leaf pairs with a possible critical pair are
+//! kept as leaf pairs, untested, for a motion of [`crate::cone_traversal::LEAF_CARRY`] of their
+//! balls (keeping one is always sound: it only adds a candidate). So a query only re-tests the
+//! front's other pairs (certified, leaves without a critical pair) and those whose margin the
+//! motion since the front's reference pose has used up, and descends from them as a fresh
+//! traversal would. Whatever the pose, the answer is the one the traversal from the root
+//! gives, up to which of equally valid stopping pairs it reaches and the kept leaf pairs that
+//! a fresh traversal would have dropped since.
 
 use crate::cone_traversal::{FrontEntry, TraversalOutput};
 use crate::patch_tree::PatchTree;
@@ -22,8 +27,11 @@ pub struct ConeFront {
     reach: u64,
     /// The trees it indexes: addresses and node counts.
     trees: [usize; 4],
-    /// Stop pairs.
+    /// Stop pairs, but for the kept leaf pairs.
     entries: Vec<FrontEntry>,
+    /// Kept leaf pairs ([`FrontEntry::kept`]): looked at every query, since each one that is
+    /// still carried goes to the traversal's leaf pairs.
+    leaves: Vec<FrontEntry>,
     /// How many entries the last traversal from the root left.
     fresh: usize,
     /// How many of the first entries the last query kept (none was tested again), and the
@@ -46,6 +54,7 @@ impl ConeFront {
     pub fn clear(&mut self) {
         self.reference = None;
         self.entries.clear();
+        self.leaves.clear();
         self.settled = (0, f64::NEG_INFINITY);
     }
 
@@ -105,6 +114,18 @@ impl ConeFront {
             self.entries.truncate(kept);
             self.settled = (kept, least_kept);
             if (used_up as f64) <= RETEST_FRACTION * (used_up + carried) as f64 {
+                // Kept leaf pairs go to the leaf pairs while their slack lasts; the others are
+                // tested again.
+                self.leaves.retain(|e| match e.kept_leaf(moved) {
+                    Some(stop) if e.slack > moved => {
+                        out.leaves.push(stop);
+                        true
+                    }
+                    _ => {
+                        out.queue(e.a, e.b);
+                        false
+                    }
+                });
                 return moved;
             }
             out.clear();
@@ -113,6 +134,7 @@ impl ConeFront {
         self.reach = reach.to_bits();
         self.trees = trees;
         self.entries.clear();
+        self.leaves.clear();
         self.fresh = 0;
         self.settled = (0, f64::NEG_INFINITY);
         out.queue(0, 0);
@@ -122,7 +144,13 @@ impl ConeFront {
     /// Takes the stop pairs of this query's traversal into the front.
     pub fn finish(&mut self, out: &TraversalOutput) {
         let fresh = self.entries.is_empty();
-        self.entries.extend_from_slice(&out.front);
+        for e in &out.front {
+            if e.kept.is_some() {
+                self.leaves.push(*e);
+            } else {
+                self.entries.push(*e);
+            }
+        }
         if fresh {
             self.fresh = self.entries.len();
         }

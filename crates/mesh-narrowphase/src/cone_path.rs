@@ -121,6 +121,7 @@ pub(crate) fn cone_path(
     }
     out.stats.node_pairs_visited = traversal.visited;
     out.stats.certified_pairs = u32::try_from(traversal.certified.len()).unwrap_or(u32::MAX);
+    out.stats.leaf_pairs = u32::try_from(traversal.leaves.len()).unwrap_or(u32::MAX);
 
     // 1. Triangles whose volumes overlap: exact intersection tests (penetrating meshes).
     scratch.candidates.clear();

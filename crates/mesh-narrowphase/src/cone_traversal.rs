@@ -47,14 +47,61 @@ pub struct FrontEntry {
     /// (mm), less the motion of B since the front's reference pose, so that the pair stays
     /// dropped for any pose that moves no point of B's component by more than this from the
     /// reference pose; for a pair dropped by its cones, the motion it survives
-    /// ([`CONE_CARRY`]) less that motion. Negative for every other stop (certified, a leaf,
-    /// a cone drop too close to the limit), which the next query tests again.
+    /// ([`CONE_CARRY`]) less that motion; for a leaf pair kept with a possible critical pair,
+    /// [`LEAF_CARRY`] of its smaller ball radius less that motion. Negative for every other
+    /// stop (certified, a leaf pair without a critical pair, a cone drop too close to the
+    /// limit), which the next query tests again.
     pub slack: f64,
     /// Dropped by its cones: when the motion uses its slack up, the pair is tested again like
     /// every pair with a negative slack (it does not count towards rebuilding the front, see
     /// [`crate::cone_front`]).
     pub by_cones: bool,
+    /// A leaf pair whose cones allowed a critical pair: kept as a leaf pair, without being
+    /// tested again, while its slack lasts ([`LEAF_CARRY`]).
+    pub kept: Option<KeptLeaf>,
 }
+
+/// A leaf pair with a possible critical pair, carried by the front ([`FrontEntry::kept`]).
+///
+/// Keeping a leaf pair is always sound: its candidate is only one more candidate, which the
+/// seed selection weighs like any other (a pair that has lost its critical pair gives a
+/// candidate that is no minimum of the mesh distance, or one that a lower neighbour covers).
+/// So a kept leaf is not tested again until the motion since it was tested reaches
+/// [`LEAF_CARRY`] of its smaller ball radius; only its distance bound and whether its meshes
+/// may meet follow the motion, conservatively.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KeptLeaf {
+    /// The lower bound (mm) on the distance between the two volumes when the pair was tested,
+    /// less the motion of B since the front's reference pose then: the bound at a pose that
+    /// moved B by `moved` since the reference pose is at least this less `moved`.
+    pub lower: f64,
+    /// The sum of the two nodes' [`PatchNode::mesh_inset`]s: the meshes may meet while the
+    /// bound less the insets is not positive.
+    pub inset: f64,
+}
+
+impl FrontEntry {
+    /// The leaf pair this entry keeps, at a pose that moved B by `moved` (mm) since the front's
+    /// reference pose (`None` for an entry that keeps no leaf).
+    #[must_use]
+    pub fn kept_leaf(&self, moved: f64) -> Option<StopPair> {
+        self.kept.map(|k| {
+            let lower = k.lower - moved;
+            StopPair {
+                a: self.a,
+                b: self.b,
+                lower,
+                critical: true,
+                meshes_may_meet: lower + k.inset <= 0.0,
+            }
+        })
+    }
+}
+
+/// Fraction of the smaller ball radius of a leaf pair with a possible critical pair by which B
+/// may move before the pair is tested again ([`KeptLeaf`]): the pair is kept meanwhile, so
+/// this only bounds how long a pair that has lost its critical pair is carried.
+pub const LEAF_CARRY: f64 = 0.1;
 
 /// What a traversal found. Reuse one across queries.
 #[derive(Clone, Debug, Default)]
@@ -396,6 +443,7 @@ pub fn traverse(
             b: j,
             slack,
             by_cones: false,
+            kept: None,
         };
         let cb = frame.rotation * b.centre + frame.translation;
         let d = cb - a.centre;
@@ -493,7 +541,18 @@ pub fn traverse(
                     continue;
                 }
                 out.leaves.push(stop);
-                out.front.push(stopped(-1.0));
+                out.front.push(if critical {
+                    let carry = LEAF_CARRY * a.radius.min(b.radius);
+                    FrontEntry {
+                        kept: Some(KeptLeaf {
+                            lower: lower - moved,
+                            inset,
+                        }),
+                        ..stopped(if carry > 0.0 { carry - moved } else { -1.0 })
+                    }
+                } else {
+                    stopped(-1.0)
+                });
             }
             (true, false) => {
                 out.stack.push((i, j + 1));

@@ -302,6 +302,10 @@ pub struct MeshStats {
     /// Patch-tree node pairs certified to hold one minimum at most, each seeded from its
     /// models ([`crate::ConcavePath::NormalCones`]).
     pub certified_pairs: u32,
+    /// Patch-tree leaf pairs left for their triangles' closest points or intersection tests,
+    /// whether the traversal tested them in this query or the carried front kept them
+    /// ([`crate::ConcavePath::NormalCones`]).
+    pub leaf_pairs: u32,
     /// Whether this query built a patch tree (convex components build theirs on first use).
     pub patches_built: bool,
 }

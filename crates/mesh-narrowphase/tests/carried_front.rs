@@ -127,6 +127,74 @@ fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_through_a_bowl() {
     walk(&bowl, &pencil, start, &STEPS, 2.5);
 }
 
+/// A leaf pair with a possible critical pair is kept by the front without being tested again
+/// while B moves less than a tenth of its smaller ball (`LEAF_CARRY`): a query repeated at the
+/// same pose, or after a motion well below that, examines fewer node pairs than it has leaf
+/// pairs, and gives the fresh query's answer (the same seeds at the same pose).
+#[test]
+fn kept_leaf_pairs_are_not_tested_again_under_small_motions() {
+    let tube = Prepared::new(fixture_object("tube", 0.05));
+    let pencil = Prepared::new(fixture_object("pencil", 0.05));
+    let pose_ab = pose(
+        DQuat::from_array([0.0, 0.024325244977882785, 0.0, 0.9997040974492232]),
+        DVec3::new(-3.87032714844386, 0.0, -49.79149919838436),
+    );
+    let band = ContactBand {
+        margin: 1.0,
+        delta1: -0.001,
+        delta2: 0.1,
+    };
+    let mut carried = MeshScratch::default();
+    let mut run = |pose_ab: &DPose3, scratch: &mut MeshScratch| {
+        let mut stats = Vec::new();
+        for ca in &tube.object.components {
+            for cb in &pencil.object.components {
+                let (_, out) = query_path(
+                    ConcavePath::NormalCones,
+                    (&tube, ca.id),
+                    (&pencil, cb.id),
+                    pose_ab,
+                    &band,
+                    scratch,
+                );
+                let seeds: Vec<_> = out
+                    .seeds
+                    .iter()
+                    .map(|s| (s.a.local_point, s.b.local_point))
+                    .collect();
+                stats.push((out.stats.node_pairs_visited, out.stats.leaf_pairs, seeds));
+            }
+        }
+        stats
+    };
+    let first = run(&pose_ab, &mut carried);
+    let leaves: u32 = first.iter().map(|s| s.1).sum();
+    assert!(leaves > 50, "the pose has {leaves} leaf pairs");
+    let nudged = pose(
+        pose_ab.rotation,
+        pose_ab.translation + DVec3::new(1e-4, -2e-4, 1e-4),
+    );
+    for at in [pose_ab, pose_ab, nudged] {
+        let warm = run(&at, &mut carried);
+        let fresh = run(&at, &mut MeshScratch::default());
+        for ((visited, leaf_pairs, seeds), (_, fresh_leaves, fresh_seeds)) in
+            warm.iter().zip(&fresh)
+        {
+            assert!(
+                visited < leaf_pairs || *leaf_pairs == 0,
+                "{visited} node pairs examined for {leaf_pairs} leaf pairs"
+            );
+            assert!(
+                leaf_pairs >= fresh_leaves,
+                "{leaf_pairs} kept against {fresh_leaves} fresh"
+            );
+            if at == pose_ab {
+                assert_eq!(seeds, fresh_seeds);
+            }
+        }
+    }
+}
+
 /// The separating-axis gap of random triangle pairs (apart, touching, crossing, at scales from
 /// 1e-3 to 1e2 mm) is at most their exact distance (Ericson's closest points, exact for
 /// disjoint triangles), at most 0 for intersecting ones, and positive for disjoint ones
