@@ -1155,7 +1155,14 @@ fn minimize_known(
                     return end(trial, iteration + 1, Outcome::SwitchLimit);
                 }
             }
-            if clipped >= 0.9 * radius {
+            // After a step onto another feature the trust radius starts again where a solve
+            // from there would: it had shrunk because the old feature pair's model failed
+            // across the boundary, which says nothing of the new pair's. (Seeds on a tube's top
+            // face under a loft reached the rim with a radius of 0.015 mm and spent six steps
+            // doubling it to cover the 1 mm along the rim to the minimum.)
+            if (switched_a || switched_b) && radius < 0.25 * max_radius {
+                radius = 0.25 * max_radius;
+            } else if clipped >= 0.9 * radius {
                 radius = (2.0 * radius).min(max_radius);
             }
             cur = trial;
