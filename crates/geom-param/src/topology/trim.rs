@@ -377,7 +377,37 @@ impl Trim {
     /// without loops.
     #[must_use]
     pub fn nearest(&self, uv: DVec2) -> Option<TrimNearest> {
-        self.nearest_within(self.unwrap(uv), f64::INFINITY)
+        let uv = self.unwrap(uv);
+        self.nearest_within(uv, self.nearest_bound(uv))
+    }
+
+    /// An upper bound on the distance from `uv` to the polylines: the distance to the first
+    /// point of the run whose box lies nearest (∞ for no polyline). Scanning with it as the
+    /// limit skips the runs beyond it from the start, where a scan in loop order narrows its
+    /// bound only as it goes (a circle's trim: half its runs before the near side).
+    fn nearest_bound(&self, uv: DVec2) -> f64 {
+        let gap = |(lo, hi): (DVec2, DVec2)| (lo - uv).max(uv - hi).max(DVec2::ZERO).length();
+        let mut nearest: Option<(f64, &TrimEntry, usize)> = None;
+        for l in &self.loops {
+            for e in &l.entries {
+                if nearest.is_some_and(|(g, _, _)| gap(e.bounds) >= g) {
+                    continue;
+                }
+                for (k, &run) in e.boxes.iter().enumerate() {
+                    let g = gap(run);
+                    if nearest.is_none_or(|(best, _, _)| g < best) {
+                        nearest = Some((g, e, k));
+                    }
+                }
+            }
+        }
+        nearest
+            .and_then(|(_, e, k)| e.polyline.get(*run_points(k, e.polyline.len()).start()))
+            // Slack for the rounding of the scan's own distance to that point.
+            .map_or(f64::INFINITY, |&(_, p)| {
+                let d = p.distance(uv);
+                d + 64.0 * f64::EPSILON * (d + uv.abs().max(p.abs()).max_element())
+            })
     }
 
     /// [`Trim::nearest`] for a `uv` already unwrapped, when some point of the polylines lies
