@@ -5,12 +5,13 @@
 //! A node pair dropped because its volumes were `s` farther apart than the reach stays dropped
 //! while B moves by less than `s`: the distance between two sets shrinks by at most the motion
 //! of either. Pairs dropped by their cones carry a margin of their own
-//! ([`crate::cone_traversal::CONE_CARRY`]), and leaf pairs with a possible critical pair are
-//! kept as leaf pairs, untested, for a motion of [`crate::cone_traversal::LEAF_CARRY`] of their
-//! balls (keeping one is always sound: it only adds a candidate). So a query only re-tests the
-//! front's other pairs (certified, leaves without a critical pair) and those whose margin the
-//! motion since the front's reference pose has used up, and descends from them as a fresh
-//! traversal would. Whatever the pose, the answer is the one the traversal from the root
+//! ([`crate::cone_traversal::CONE_CARRY`]), and leaf pairs are kept as leaf pairs, untested
+//! ([`crate::cone_traversal::KeptLeaf`]): those with a possible critical pair for a motion of
+//! [`crate::cone_traversal::LEAF_CARRY`] of their balls (keeping one is always sound: it only
+//! adds a candidate), those whose meshes may meet for as long as their cones rule out a
+//! critical pair. So a query only re-tests the front's other pairs (certified, leaves whose
+//! cones would not hold) and those whose margin the motion since the front's reference pose
+//! has used up, and descends from them as a fresh traversal would. Whatever the pose, the answer is the one the traversal from the root
 //! gives, up to which of equally valid stopping pairs it reaches and the kept leaf pairs that
 //! a fresh traversal would have dropped since.
 

@@ -56,21 +56,27 @@ pub struct FrontEntry {
     /// every pair with a negative slack (it does not count towards rebuilding the front, see
     /// [`crate::cone_front`]).
     pub by_cones: bool,
-    /// A leaf pair whose cones allowed a critical pair: kept as a leaf pair, without being
-    /// tested again, while its slack lasts ([`LEAF_CARRY`]).
+    /// A leaf pair kept as a leaf pair, without being tested again, while its slack lasts
+    /// ([`KeptLeaf`]).
     pub kept: Option<KeptLeaf>,
 }
 
-/// A leaf pair with a possible critical pair, carried by the front ([`FrontEntry::kept`]).
+/// A leaf pair carried by the front ([`FrontEntry::kept`]) as a leaf pair, without being
+/// tested again, while its slack lasts: only its distance bound and whether its meshes may
+/// meet follow the motion, conservatively.
 ///
-/// Keeping a leaf pair is always sound: its candidate is only one more candidate, which the
-/// seed selection weighs like any other (a pair that has lost its critical pair gives a
-/// candidate that is no minimum of the mesh distance, or one that a lower neighbour covers).
-/// So a kept leaf is not tested again until the motion since it was tested reaches
-/// [`LEAF_CARRY`] of its smaller ball radius; only its distance bound and whether its meshes
-/// may meet follow the motion, conservatively.
+/// - With a possible critical pair: keeping it is always sound, as its candidate is only one
+///   more candidate, which the seed selection weighs like any other (a pair that has lost its
+///   critical pair gives a candidate that is no minimum of the mesh distance, or one that a
+///   lower neighbour covers). Kept for a motion of [`LEAF_CARRY`] of its smaller ball radius.
+/// - Without one, but with meshes that may meet (kept for their exact intersection tests, as
+///   a leaf pair that a fresh test would drop has triangles apart, which those tests find):
+///   kept for a motion of [`CONE_CARRY`] of its smaller ball radius when its cones rule out a
+///   critical pair for any motion that long, as for a pair dropped by its cones.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KeptLeaf {
+    /// Whether the cones allowed a critical pair.
+    pub critical: bool,
     /// The lower bound (mm) on the distance between the two volumes when the pair was tested,
     /// less the motion of B since the front's reference pose then: the bound at a pose that
     /// moved B by `moved` since the reference pose is at least this less `moved`.
@@ -91,7 +97,7 @@ impl FrontEntry {
                 a: self.a,
                 b: self.b,
                 lower,
-                critical: true,
+                critical: k.critical,
                 meshes_may_meet: lower + k.inset <= 0.0,
             }
         })
@@ -383,8 +389,20 @@ impl CarriedDrop<'_> {
     /// must exceed to be of use.
     fn slack(&self, gap: f64, moved: f64) -> f64 {
         let margin = (CONE_CARRY * self.a.radius.min(self.b.radius)).min(GAP_CARRY * gap);
-        if !(gap > margin && margin > moved && self.b_reach > 0.0) {
-            return -1.0;
+        if gap > margin && self.stays_uncritical(margin, moved) {
+            margin
+        } else {
+            -1.0
+        }
+    }
+
+    /// Whether the cones still rule out both kinds of critical pair after any motion of B by at
+    /// most `margin` (mm), which must exceed `moved`: the tests with B's ball grown by `margin`
+    /// and B's cap and band widened by the largest turn that moves no point of B by more (see
+    /// [`CarriedDrop::slack`]).
+    fn stays_uncritical(&self, margin: f64, moved: f64) -> bool {
+        if !(margin > moved && self.b_reach > 0.0) {
+            return false;
         }
         let turn = 2.0 * (margin / (2.0 * self.b_reach)).min(1.0).asin();
         let cone_b = self.cone_b.widened(turn);
@@ -400,7 +418,7 @@ impl CarriedDrop<'_> {
             };
             kinds = kinds.with_bands((&self.a.cone, &self.a.band), (&cone_b, &band_b), &towards_b);
         }
-        if kinds.any() { -1.0 } else { margin }
+        !kinds.any()
     }
 }
 
@@ -541,14 +559,34 @@ pub fn traverse(
                     continue;
                 }
                 out.leaves.push(stop);
-                out.front.push(if critical {
-                    let carry = LEAF_CARRY * a.radius.min(b.radius);
+                let smaller = a.radius.min(b.radius);
+                let carry = if critical {
+                    LEAF_CARRY * smaller
+                } else {
+                    let carry = CONE_CARRY * smaller;
+                    let drop = CarriedDrop {
+                        a,
+                        b,
+                        cone_b: &cone_b,
+                        rotation: &frame.rotation,
+                        d,
+                        length,
+                        b_reach,
+                    };
+                    if drop.stays_uncritical(carry, moved) {
+                        carry
+                    } else {
+                        0.0
+                    }
+                };
+                out.front.push(if carry > moved {
                     FrontEntry {
                         kept: Some(KeptLeaf {
+                            critical,
                             lower: lower - moved,
                             inset,
                         }),
-                        ..stopped(if carry > 0.0 { carry - moved } else { -1.0 })
+                        ..stopped(carry - moved)
                     }
                 } else {
                     stopped(-1.0)
