@@ -11,9 +11,9 @@
 //! adds a candidate), those whose meshes may meet for as long as their cones rule out a
 //! critical pair. So a query only re-tests the front's other pairs (certified, leaves whose
 //! cones would not hold) and those whose margin the motion since the front's reference pose
-//! has used up, and descends from them as a fresh traversal would. Whatever the pose, the answer is the one the traversal from the root
-//! gives, up to which of equally valid stopping pairs it reaches and the kept leaf pairs that
-//! a fresh traversal would have dropped since.
+//! has used up, and descends from them as a fresh traversal would. Whatever the pose, the
+//! answer is the one the traversal from the root gives, up to which of equally valid stopping
+//! pairs it reaches and the kept leaf pairs that a fresh traversal would have dropped since.
 
 use crate::cone_traversal::{FrontEntry, TraversalOutput};
 use crate::patch_tree::PatchTree;

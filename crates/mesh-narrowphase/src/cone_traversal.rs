@@ -47,10 +47,10 @@ pub struct FrontEntry {
     /// (mm), less the motion of B since the front's reference pose, so that the pair stays
     /// dropped for any pose that moves no point of B's component by more than this from the
     /// reference pose; for a pair dropped by its cones, the motion it survives
-    /// ([`CONE_CARRY`]) less that motion; for a leaf pair kept with a possible critical pair,
-    /// [`LEAF_CARRY`] of its smaller ball radius less that motion. Negative for every other
-    /// stop (certified, a leaf pair without a critical pair, a cone drop too close to the
-    /// limit), which the next query tests again.
+    /// ([`CONE_CARRY`]) less that motion; for a kept leaf pair ([`KeptLeaf`]), the motion it
+    /// is kept for less that motion. Negative for every other stop (certified, a leaf pair
+    /// whose cones would not hold, a cone drop too close to the limit), which the next query
+    /// tests again.
     pub slack: f64,
     /// Dropped by its cones: when the motion uses its slack up, the pair is tested again like
     /// every pair with a negative slack (it does not count towards rebuilding the front, see
