@@ -12,12 +12,24 @@ use common::*;
 use geom_param::{DPose3, DQuat, DVec3};
 use mesh_narrowphase::triangle_distance::{closest_between_triangles, separating_gap};
 use mesh_narrowphase::triangle_intersection::triangles_intersect;
-use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch, MeshVerdict};
+use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch, MeshStats, MeshVerdict};
 
-/// Every component pair's verdict, seeds (A's and B's points) and intersecting triangle pairs.
-type Answer = Vec<(MeshVerdict, Vec<(DVec3, DVec3)>, Vec<(u32, u32)>)>;
+/// One component pair's answer: verdict, seeds (A's and B's points), intersecting triangle
+/// pairs, and the node pairs examined and leaf pairs left ([`MeshStats`]).
+struct Answered {
+    verdict: MeshVerdict,
+    seeds: Vec<(DVec3, DVec3)>,
+    pairs: Vec<(u32, u32)>,
+    stats: MeshStats,
+}
 
-fn answer(a: &Prepared, b: &Prepared, pose_ab: &DPose3, scratch: &mut MeshScratch) -> Answer {
+/// Every component pair's answer.
+fn answer(
+    a: &Prepared,
+    b: &Prepared,
+    pose_ab: &DPose3,
+    scratch: &mut MeshScratch,
+) -> Vec<Answered> {
     let band = ContactBand {
         margin: 1.0,
         delta1: -0.001,
@@ -41,7 +53,12 @@ fn answer(a: &Prepared, b: &Prepared, pose_ab: &DPose3, scratch: &mut MeshScratc
                 .collect();
             let mut pairs = out.penetrating_pairs.clone();
             pairs.sort_unstable();
-            all.push((verdict, seeds, pairs));
+            all.push(Answered {
+                verdict,
+                seeds,
+                pairs,
+                stats: out.stats,
+            });
         }
     }
     all
@@ -78,7 +95,9 @@ fn walk(a: &Prepared, b: &Prepared, start: DPose3, steps: &[(f64, f64)], near: f
         let warm = answer(a, b, &pose_ab, &mut carried);
         let fresh = answer(a, b, &pose_ab, &mut MeshScratch::default());
         assert_eq!(warm.len(), fresh.len());
-        for ((wv, ws, wp), (fv, fs, fp)) in warm.iter().zip(&fresh) {
+        for (w, f) in warm.iter().zip(&fresh) {
+            let (wv, ws, wp) = (&w.verdict, &w.seeds, &w.pairs);
+            let (fv, fs, fp) = (&f.verdict, &f.seeds, &f.pairs);
             assert_eq!(wv, fv, "step {k}: verdicts");
             assert_eq!(wp, fp, "step {k}: intersecting triangle pairs");
             let covered = |from: &[(DVec3, DVec3)], to: &[(DVec3, DVec3)]| {
@@ -133,67 +152,33 @@ fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_through_a_bowl() {
 /// finds the fresh query's intersecting triangle pairs, and at the same pose gives the fresh
 /// query's seeds. Returns the first query's leaf pairs.
 fn kept_leaves(a: &Prepared, b: &Prepared, pose_ab: DPose3) -> u32 {
-    let band = ContactBand {
-        margin: 1.0,
-        delta1: -0.001,
-        delta2: 0.1,
-    };
     let mut carried = MeshScratch::default();
-    let run = |pose_ab: &DPose3, scratch: &mut MeshScratch| {
-        let mut stats = Vec::new();
-        for ca in &a.object.components {
-            for cb in &b.object.components {
-                let (_, out) = query_path(
-                    ConcavePath::NormalCones,
-                    (a, ca.id),
-                    (b, cb.id),
-                    pose_ab,
-                    &band,
-                    scratch,
-                );
-                let seeds: Vec<_> = out
-                    .seeds
-                    .iter()
-                    .map(|s| (s.a.local_point, s.b.local_point))
-                    .collect();
-                let mut pairs = out.penetrating_pairs.clone();
-                pairs.sort_unstable();
-                stats.push((
-                    out.stats.node_pairs_visited,
-                    out.stats.leaf_pairs,
-                    seeds,
-                    pairs,
-                ));
-            }
-        }
-        stats
-    };
-    let first = run(&pose_ab, &mut carried);
+    let first = answer(a, b, &pose_ab, &mut carried);
     let nudged = pose(
         pose_ab.rotation,
         pose_ab.translation + DVec3::new(1e-4, -2e-4, 1e-4),
     );
     for at in [pose_ab, pose_ab, nudged] {
-        let warm = run(&at, &mut carried);
-        let fresh = run(&at, &mut MeshScratch::default());
-        for ((visited, leaf_pairs, seeds, pairs), (_, fresh_leaves, fresh_seeds, fresh_pairs)) in
-            warm.iter().zip(&fresh)
-        {
+        let warm = answer(a, b, &at, &mut carried);
+        let fresh = answer(a, b, &at, &mut MeshScratch::default());
+        for (w, f) in warm.iter().zip(&fresh) {
+            let (visited, leaf_pairs) = (w.stats.node_pairs_visited, w.stats.leaf_pairs);
             assert!(
-                visited < leaf_pairs || *leaf_pairs == 0,
+                visited < leaf_pairs || leaf_pairs == 0,
                 "{visited} node pairs examined for {leaf_pairs} leaf pairs"
             );
             assert!(
-                leaf_pairs >= fresh_leaves,
-                "{leaf_pairs} kept against {fresh_leaves} fresh"
+                leaf_pairs >= f.stats.leaf_pairs,
+                "{leaf_pairs} kept against {} fresh",
+                f.stats.leaf_pairs
             );
-            assert_eq!(pairs, fresh_pairs);
+            assert_eq!(w.pairs, f.pairs);
             if at == pose_ab {
-                assert_eq!(seeds, fresh_seeds);
+                assert_eq!(w.seeds, f.seeds);
             }
         }
     }
-    first.iter().map(|s| s.1).sum()
+    first.iter().map(|s| s.stats.leaf_pairs).sum()
 }
 
 /// Leaf pairs with a possible critical pair are kept by the front without being tested again
