@@ -28,8 +28,8 @@ use crate::dense_solve::{
 };
 use crate::feature_eval::{Body, FeatureEval, Loc, LocalFacePoint, params, with_params};
 use crate::feature_switch::{
-    TakenEntries, into_faces, onto_nearest_edge, reenter, reenter_untaken, settle, settle_start,
-    snap_to_sides, snap_within_distance,
+    TakenEntries, into_faces, onto_nearest_edge, reenter, reenter_untaken, settle,
+    settle_onto_trim, settle_start, snap_to_sides, snap_within_distance, trim_exit,
 };
 use crate::options::NewtonOptions;
 use crate::penetration::{
@@ -1445,13 +1445,32 @@ pub(crate) fn take_step(a: &Body, b: &Body, cur: &State, step: &[f64; 4]) -> (Lo
             hit = Some((s, bound));
         }
     }
+    // A step that leaves a trimmed face is cut where it leaves, as at a rectangle's side, and
+    // that face's point goes onto the boundary there.
+    let mut leaves = [false; 2];
+    for (k, (body, loc)) in [(a, &cur.la), (b, &cur.lb)].into_iter().enumerate() {
+        if let Some(exit) = trim_exit(body, loc, [delta[2 * k], delta[2 * k + 1]])
+            && exit < alpha
+        {
+            alpha = exit;
+            hit = None;
+            leaves = [k == 0, k == 1];
+        }
+    }
     for &s in &slot[..cur.n] {
         x[s] += alpha * delta[s];
     }
     if let Some((s, bound)) = hit {
         x[s] = bound;
     }
-    let la = settle(a, with_params(&cur.la, [x[0], x[1]]));
-    let lb = settle(b, with_params(&cur.lb, [x[2], x[3]]));
+    let onto = |body: &Body, loc: Loc, leaving: bool| {
+        if leaving {
+            settle_onto_trim(body, loc)
+        } else {
+            settle(body, loc)
+        }
+    };
+    let la = onto(a, with_params(&cur.la, [x[0], x[1]]), leaves[0]);
+    let lb = onto(b, with_params(&cur.lb, [x[2], x[3]]), leaves[1]);
     (la, lb)
 }

@@ -8,13 +8,6 @@ use geom_param::{DQuat, DVec3, FeatureId, Seed};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use support::*;
 
-/// (u, v) of the point of the origin-centred sphere face in direction `dir`.
-fn sphere_params(dir: DVec3) -> (f64, f64) {
-    let u = dir.y.atan2(dir.x).rem_euclid(std::f64::consts::TAU);
-    let v = (dir.z.clamp(-1.0, 1.0).asin() + FRAC_PI_2) / PI;
-    (u, v)
-}
-
 #[test]
 fn sphere_sphere_separated_and_penetrating() {
     let mut rng = Rng(1);
@@ -351,6 +344,47 @@ fn curve_surface_sphere_against_rim() {
         assert_eq!(
             c.location_b.feature(),
             FeatureId::Edge(geom_param::EdgeId(0)),
+            "{what}: {c:?}"
+        );
+        let dir = rotation * -out;
+        assert_answer(&c, gap, dir * rs, dir * (rs + gap), &what);
+    }
+}
+
+/// Curve-surface through a trimmed face: from a seed on a tube's top cap (a plane trimmed by
+/// two circles) 1.2 mm inside the outer rim, under a sphere beyond the rim, the solve leaves
+/// the cap across its trim onto the rim and ends at the closed-form pair (the rim's point
+/// against the sphere's, along the line from the sphere's centre).
+#[test]
+fn curve_surface_sphere_against_a_trimmed_cap_rim() {
+    let mut rng = Rng(7);
+    let rs = 3.0;
+    let (outer, inner, length) = (10.0, 8.0, 20.0);
+    let a = sphere(rs);
+    let b = geom_param::tube(outer, inner, length).expect("tube");
+    for k in 0..40 {
+        let phi = rng.range(0.0, TAU);
+        let beta = rng.range(0.2, 1.3);
+        let gap = rng.range(1e-4, 0.5);
+        let radial = DVec3::new(phi.cos(), phi.sin(), 0.0);
+        let corner = radial * outer + DVec3::Z * length; // top outer rim point, local to B
+        let out = radial * beta.cos() + DVec3::Z * beta.sin();
+        let center_local = corner + out * (gap + rs);
+        let rotation = rng.rotation();
+        let pose_ab = pose(rotation, -(rotation * center_local));
+        let on_cap = DVec3::new((phi + 0.1).cos(), (phi + 0.1).sin(), 0.0) * (outer - 1.2);
+        // The sphere's seed faces the cap's, as Stage 2's closest mesh points would.
+        let (u, v) = sphere_params((pose_ab * (on_cap + DVec3::Z * length)).normalize());
+        let seed = Seed {
+            a: seed_point(&a, face(0, u, v), DVec3::ZERO),
+            b: seed_point(&b, face(3, on_cap.x, on_cap.y), DVec3::ZERO),
+        };
+        let c = refine(&a, &b, &pose_ab, &seed);
+        let what = format!("case {k}");
+        assert_converged(&c, &what);
+        assert_eq!(
+            c.location_b.feature(),
+            FeatureId::Edge(geom_param::EdgeId(1)),
             "{what}: {c:?}"
         );
         let dir = rotation * -out;
