@@ -6,7 +6,7 @@ use criterion::Criterion;
 use geom_param::{
     ComponentId, ConvexHull, DPose3, DQuat, DVec3, MeshOptions, ObjectDescription, ObjectModel,
 };
-use mesh_narrowphase::convex_pair::{GjkScratch, HullProximity, WarmStart, hull_proximity};
+use mesh_narrowphase::convex::convex_pair::{GjkScratch, HullProximity, WarmStart, hull_proximity};
 use mesh_narrowphase::{
     ComponentRef, ContactBand, MeshNarrowphase, MeshOutput, MeshPhase, MeshScratch,
 };

@@ -5,7 +5,7 @@
 
 use criterion::Criterion;
 use geom_param::{MeshOptions, ObjectFile, ObjectModel};
-use mesh_narrowphase::patch_tree::PatchTree;
+use mesh_narrowphase::cones::patch_tree::PatchTree;
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -3,7 +3,7 @@
 //! mesh-narrowphase --example patch_tree_times [NAME...]`.
 
 use geom_param::{MeshOptions, ObjectFile};
-use mesh_narrowphase::patch_tree::PatchTree;
+use mesh_narrowphase::cones::patch_tree::PatchTree;
 use std::time::Instant;
 
 fn main() {

@@ -1,17 +1,18 @@
 //! [`MeshNarrowphase`]: the default [`MeshPhase`], GJK for convex pairs and proxy-mesh collision
 //! regions for the rest.
 
-use crate::collision_regions::{IntersectionSegment, RegionScratch};
-use crate::cone_path::{ConeScratch, cone_path};
-use crate::convex_pair::{GjkScratch, HullProximity, WarmStart, hull_proximity};
+use crate::cones::cone_path::{ConeScratch, cone_path};
+use crate::convex::convex_pair::{GjkScratch, HullProximity, WarmStart, hull_proximity};
 use crate::mesh_phase::{
     ComponentRef, ContactBand, MeshBoundaryPoint, MeshInputError, MeshOutput, MeshPhase,
     MeshVerdict,
 };
 use crate::nearest_boundary::{faces_near, nearest_boundary_point};
+use crate::pair_key::PairKey;
 use crate::prepared_object::PreparedObject;
-use crate::proxy_path::triangle_path;
+use crate::proxy::proxy_path::triangle_path;
 use crate::query_side::Side;
+use crate::triangles::mesh_intersections::TriangleBuffers;
 use geom_param::{ComponentKind, DPose3, FeatureLocation, ObjectModel, Seed};
 use glam::DVec3;
 use std::collections::HashMap;
@@ -41,12 +42,11 @@ impl Default for MeshNarrowphaseOptions {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ConcavePath {
     /// The default: a simultaneous traversal of the two components' patch trees
-    /// ([`crate::patch_tree`], [`crate::cone_traversal`]) that drops node pairs by distance and
-    /// normal cones, stops at pairs certified to hold one minimum at most (one seed each, from
-    /// second-order models of the exact faces) and tests triangles only
-    /// where no certificate holds (apexes, concave creases, flat or conforming contacts, and
-    /// intersecting meshes). Its cost follows the geometry of the contacts, not the number of
-    /// triangles.
+    /// ([`crate::cones::patch_tree`], [`crate::cones::cone_traversal`]) that drops node pairs by
+    /// distance and normal cones, stops at pairs certified to hold one minimum at most (one seed
+    /// each, from second-order models of the exact faces) and tests triangles only where no
+    /// certificate holds (apexes, concave creases, flat or conforming contacts, and intersecting
+    /// meshes). Its cost follows the geometry of the contacts, not the number of triangles.
     #[default]
     NormalCones,
     /// The paper's proxy meshes: every colliding triangle pair of the mesh-mesh and the
@@ -68,13 +68,8 @@ pub struct MeshNarrowphase {
 pub struct MeshScratch {
     warm: HashMap<PairKey, WarmStart>,
     gjk: GjkScratch,
-    pub(crate) candidates: Vec<(u32, u32)>,
-    pub(crate) segments: Vec<IntersectionSegment>,
-    pub(crate) region_of: Vec<u32>,
-    pub(crate) regions: RegionScratch,
-    pub(crate) centres: Vec<DVec3>,
-    pub(crate) extremes: Vec<(f64, [DVec3; 2])>,
-    pub(crate) cone: ConeScratch,
+    triangles: TriangleBuffers,
+    cone: ConeScratch,
 }
 
 impl MeshScratch {
@@ -84,9 +79,6 @@ impl MeshScratch {
         self.cone.fronts.clear();
     }
 }
-
-/// A component pair, by object address and component index (warm starts are per ordered pair).
-pub(crate) type PairKey = (usize, u32, usize, u32);
 
 impl MeshPhase for MeshNarrowphase {
     type Prepared = PreparedObject;
@@ -186,12 +178,18 @@ impl MeshPhase for MeshNarrowphase {
                 pose_ab,
                 band.delta2,
                 errors,
-                scratch,
+                (&mut scratch.cone, &mut scratch.triangles),
                 out,
             ),
-            ConcavePath::ProxyRegions => {
-                triangle_path(&side_a, &side_b, pose_ab, band.delta2, errors, scratch, out)
-            }
+            ConcavePath::ProxyRegions => triangle_path(
+                &side_a,
+                &side_b,
+                pose_ab,
+                band.delta2,
+                errors,
+                &mut scratch.triangles,
+                out,
+            ),
         }
     }
 }

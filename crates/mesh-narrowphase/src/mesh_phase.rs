@@ -58,12 +58,13 @@ pub struct ComponentRef<'a, P> {
 /// the last case hand Stage 3 one seed per contact.
 ///
 /// # Frames and units
-/// Millimetres throughout. `pose_ab` is B's pose in A's frame (`pose_ab * p_b` is a point of B
-/// in A's frame). [`MeshOutput::penetration_centres`] are in A's frame; each [`geom_param::SeedPoint`]
+/// Millimetres throughout. `pose_ab` is B's pose in A's frame (`pose_ab * p_b` is a point of B in
+/// A's frame). [`MeshOutput::penetration_centres`] are in A's frame; each [`geom_param::SeedPoint`]
 /// of a seed carries its `local_point` in its own object's frame.
 ///
 /// # Verdicts
-/// Let e_A, e_B be the components' measured chordal errors ([`geom_param::ComponentMesh::chordal_error`]).
+/// Let e_A, e_B be the components' measured chordal errors
+/// ([`geom_param::ComponentMesh::chordal_error`]).
 /// - [`MeshVerdict::Separated`]: the components hold no contact within `delta2`. For convex
 ///   pairs, the hulls are farther apart than `delta2 + e_A + e_B` (so no exact points are within
 ///   `delta2`). On the triangle paths see there: with the normal cones (the default), no
@@ -104,19 +105,19 @@ pub struct ComponentRef<'a, P> {
 /// converge within its iteration cap falls back to the triangle path as well.
 ///
 /// # Triangle path: normal cones ([`crate::ConcavePath::NormalCones`], the default)
-/// A simultaneous traversal of the two components' patch trees ([`crate::patch_tree`]): every
-/// node bounds the exact surface of its mesh pieces by a ball and a slab along its normal cone's
-/// axis (the pieces grown by a bound on their distance to the surface, at most the chordal
+/// A simultaneous traversal of the two components' patch trees ([`crate::cones::patch_tree`]):
+/// every node bounds the exact surface of its mesh pieces by a ball and a slab along its normal
+/// cone's axis (the pieces grown by a bound on their distance to the surface, at most the chordal
 /// error), and all its outward normals, crease normals included, by a cap and a band
-/// ([`crate::normal_cone`]). A node pair is dropped when its volumes are farther apart than
-/// `max(delta2, 0)` (plus a rounding allowance of 1e-9 of the components' sizes), or when they
-/// do not overlap and the cones rule out both kinds of critical pair of the distance (a
-/// separated local minimum has opposite normals along the connecting direction, a penetration
-/// witness the reverse; Johnson & Cohen). A pair whose two patches are smooth, narrow-coned and
-/// whose curvature tensors make the gap between them strictly convex is *certified*: it holds
-/// one minimum at most, and stops there ([`crate::cone_traversal::certifiable`]). The rest
-/// descend to leaf pairs. Apexes (points where a face has no tangent plane) are traversed as
-/// points against the other tree. Then
+/// ([`crate::cones::normal_cone`]). A node pair is dropped when its volumes are farther apart than
+/// `max(delta2, 0)` (plus a rounding allowance of 1e-9 of the components' sizes), or when they do
+/// not overlap and the cones rule out both kinds of critical pair of the distance (a separated
+/// local minimum has opposite normals along the connecting direction, a penetration witness the
+/// reverse; Johnson & Cohen). A pair whose two patches are smooth, narrow-coned and whose curvature
+/// tensors make the gap between them strictly convex is *certified*: it holds one minimum at most,
+/// and stops there ([`crate::cones::cone_traversal::certifiable`]). The rest descend to leaf pairs.
+/// Apexes (points where a face has no tangent plane) are traversed as points against the other
+/// tree. Then
 /// 1. leaf pairs whose volumes overlap get the exact triangle-triangle test (intersecting
 ///    meshes, as above);
 /// 2. each certified pair gives a candidate where the second-order models of its two patches
@@ -127,14 +128,14 @@ pub struct ComponentRef<'a, P> {
 ///    pair's smaller ball, or the leaf's ball), and each one left becomes a seed: its predicted
 ///    points moved to the nearest mesh points, closest first.
 ///
-/// Minima, not collision regions, are what is searched: two minima close together get a seed
-/// each (no pair holding both is certified), and the cost follows the geometry of the contacts
-/// rather than the number of triangles. The scratch keeps each component pair's traversal front
-/// ([`crate::cone_front`]): the next query re-tests only the node pairs whose margins the motion
-/// of B since then may have used up, and the others not dropped by distance.
-/// What a pair of components reports is a critical pair of the solids' distance: a component
-/// pair's own closest points on the boundary between components, where the solids are not at a
-/// minimum, are no seed (the neighbouring component pair holds the solids' minimum).
+/// Minima, not collision regions, are what is searched: two minima close together get a seed each
+/// (no pair holding both is certified), and the cost follows the geometry of the contacts rather
+/// than the number of triangles. The scratch keeps each component pair's traversal front
+/// ([`crate::cones::cone_front`]): the next query re-tests only the node pairs whose margins the
+/// motion of B since then may have used up, and the others not dropped by distance. What a pair of
+/// components reports is a critical pair of the solids' distance: a component pair's own closest
+/// points on the boundary between components, where the solids are not at a minimum, are no seed
+/// (the neighbouring component pair holds the solids' minimum).
 ///
 /// # Triangle path: proxy regions ([`crate::ConcavePath::ProxyRegions`], the paper's)
 /// 1. Every intersecting triangle pair between the two meshes, by a simultaneous traversal of
@@ -144,7 +145,7 @@ pub struct ComponentRef<'a, P> {
 ///    when both or neither are) and the other's mesh. The proxy is that component's mesh offset
 ///    outwards by `max(delta2, 0) + e_A + e_B + 1e-9 · size` (size: the component's largest
 ///    coordinate), standing at least that far above each of its triangles' planes (vertices on
-///    creases move further; see [`crate::proxy_mesh::ProxyMesh`]). That offset suffices: two
+///    creases move further; see [`crate::proxy::proxy_mesh::ProxyMesh`]). That offset suffices: two
 ///    exact points within `delta2` have mesh points within `delta2 + e_A + e_B`, so the other
 ///    mesh, unless it intersects this one (step 1), reaches into the proxy shell and, unless it
 ///    lies wholly inside the shell (see the limitations), crosses the proxy. A wider offset (e.g.
@@ -324,7 +325,8 @@ pub struct MeshOutput {
     /// seeds at the ends of its loop, for the caller to refine when the centre seed does not
     /// account for the whole region (see [`RegionProbes`]). Empty on the convex path.
     pub probes: Vec<RegionProbes>,
-    /// Counters for statistics: triangle pairs tested, regions found, whether a proxy was built, GJK iterations.
+    /// Counters for statistics: triangle pairs tested, regions found, whether a proxy was built,
+    /// GJK iterations.
     pub stats: MeshStats,
 }
 

@@ -1,10 +1,10 @@
 //! Per-object preprocessing of the default mesh phase: a triangle tree per component, a patch
 //! tree per component, and a lazily filled proxy cache.
 
-use crate::patch_tree::PatchTree;
-use crate::proxy_mesh::ProxyCache;
-use crate::triangle_bvh::TriangleBvh;
-use crate::triangle_rings::TriangleRings;
+use crate::cones::patch_tree::PatchTree;
+use crate::proxy::proxy_mesh::ProxyCache;
+use crate::triangles::triangle_bvh::TriangleBvh;
+use crate::triangles::triangle_rings::TriangleRings;
 use geom_param::{ComponentMesh, ObjectModel, Solid};
 use std::sync::OnceLock;
 

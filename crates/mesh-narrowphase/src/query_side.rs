@@ -1,8 +1,8 @@
 //! One side of a mesh-phase query, resolved from its [`ComponentRef`]: the component's mesh,
 //! prepared data, hull and kind.
 
+use crate::cones::patch_tree::PatchTree;
 use crate::mesh_phase::{ComponentRef, MeshInputError};
-use crate::patch_tree::PatchTree;
 use crate::prepared_object::{PreparedComponent, PreparedObject};
 use crate::seeds::MeshSide;
 use geom_param::{ComponentId, ComponentKind, ComponentMesh, ConvexHull, ObjectModel};

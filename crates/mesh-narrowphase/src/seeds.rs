@@ -1,7 +1,7 @@
 //! Turning approximate closest points into seed points: the mesh point, the exact feature and
 //! its parameters.
 
-use crate::triangle_bvh::TriangleBvh;
+use crate::triangles::triangle_bvh::TriangleBvh;
 use geom_param::{ComponentId, ComponentMesh, SeedPoint};
 use glam::DVec3;
 

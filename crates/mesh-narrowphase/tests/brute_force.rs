@@ -7,7 +7,7 @@ mod common;
 
 use common::*;
 use geom_param::{ComponentId, DPose3, DQuat, DVec3, ObjectModel};
-use mesh_narrowphase::triangle_intersection::triangles_intersect;
+use mesh_narrowphase::triangles::triangle_intersection::triangles_intersect;
 use mesh_narrowphase::{ConcavePath, ContactBand, MeshInputError, MeshScratch, MeshVerdict};
 use parry3d_f64::query::{ClosestPoints, closest_points};
 use parry3d_f64::shape::Triangle;
@@ -217,7 +217,7 @@ fn unusable_inputs_are_refused() {
 
 #[test]
 fn plane_filter_never_contradicts_the_exact_test() {
-    use mesh_narrowphase::plane_filter::clearly_apart;
+    use mesh_narrowphase::triangles::plane_filter::clearly_apart;
     let mut rng = Rng(99);
     let mut apart = 0;
     for k in 0..200_000 {

@@ -10,8 +10,8 @@ mod common;
 
 use common::*;
 use geom_param::{DPose3, DQuat, DVec3};
-use mesh_narrowphase::triangle_distance::{closest_between_triangles, separating_gap};
-use mesh_narrowphase::triangle_intersection::triangles_intersect;
+use mesh_narrowphase::triangles::triangle_distance::{closest_between_triangles, separating_gap};
+use mesh_narrowphase::triangles::triangle_intersection::triangles_intersect;
 use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch, MeshStats, MeshVerdict};
 
 /// One component pair's answer: verdict, seeds (A's and B's points), intersecting triangle

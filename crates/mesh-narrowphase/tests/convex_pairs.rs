@@ -5,8 +5,8 @@ mod common;
 
 use common::*;
 use geom_param::{ComponentKind, ConvexHull, DQuat, DVec3};
-use mesh_narrowphase::convex_pair::{GjkScratch, HullProximity, WarmStart, hull_proximity};
-use mesh_narrowphase::hill_climb_support::HillClimbSupport;
+use mesh_narrowphase::convex::convex_pair::{GjkScratch, HullProximity, WarmStart, hull_proximity};
+use mesh_narrowphase::convex::hill_climb_support::HillClimbSupport;
 use mesh_narrowphase::{ContactBand, MeshScratch, MeshVerdict};
 use parry3d_f64::query;
 use parry3d_f64::shape::{ConvexPolyhedron, SupportMap};

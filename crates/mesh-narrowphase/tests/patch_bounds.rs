@@ -10,8 +10,8 @@ mod common;
 use common::fixture_object;
 use geom_param::{ComponentMesh, Solid};
 use glam::{DVec2, DVec3};
-use mesh_narrowphase::normal_cone::{NormalBand, NormalCone};
-use mesh_narrowphase::patch_tree::{PatchLeaf, PatchTree};
+use mesh_narrowphase::cones::normal_cone::{NormalBand, NormalCone};
+use mesh_narrowphase::cones::patch_tree::{PatchLeaf, PatchTree};
 
 /// The angle (rad) by which `n` lies outside the cap (0 inside).
 fn outside_cap(cap: &NormalCone, n: DVec3) -> f64 {

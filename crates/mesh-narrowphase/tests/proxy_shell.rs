@@ -6,7 +6,7 @@ mod common;
 
 use common::*;
 use geom_param::{ComponentMesh, SegmentSpec};
-use mesh_narrowphase::proxy_mesh::{MIN_NORMAL_COSINE, ProxyMesh};
+use mesh_narrowphase::proxy::proxy_mesh::{MIN_NORMAL_COSINE, ProxyMesh};
 
 /// Checks the shell of `mesh` at `offset` by plain vector algebra on the two position lists,
 /// and returns the smallest height a plain offset along the vertex normals would have had

@@ -1,7 +1,7 @@
 //! `collision_regions::region_extremes` on closed loops whose extent is known in closed form.
 
 use glam::DVec3;
-use mesh_narrowphase::collision_regions::{
+use mesh_narrowphase::triangles::collision_regions::{
     IntersectionSegment, RegionScratch, group_regions, region_centres, region_extremes,
 };
 

@@ -1,9 +1,9 @@
-//! Tests of `mesh_narrowphase::triangle_intersection` against truth computed independently:
-//! closed forms, an exact integer separating-axis test, f64 reference clipping, and
+//! Tests of `mesh_narrowphase::triangles::triangle_intersection` against truth computed
+//! independently: closed forms, an exact integer separating-axis test, f64 reference clipping, and
 //! point–triangle distances.
 
 use glam::DVec3;
-use mesh_narrowphase::triangle_intersection::{
+use mesh_narrowphase::triangles::triangle_intersection::{
     TriangleContact, intersect_triangles, triangles_intersect,
 };
 

@@ -1,6 +1,6 @@
 //! The convex-convex path: GJK between two hulls with hill-climbing support maps and warm start.
 
-use crate::hill_climb_support::HillClimbSupport;
+use crate::convex::hill_climb_support::HillClimbSupport;
 use geom_param::{ConvexHull, DPose3};
 use glam::DVec3;
 use parry3d_f64::query::gjk::{self, CsoPoint, GJKResult, VoronoiSimplex};

@@ -3,15 +3,18 @@
 //! minimum: certified pairs seeded from second-order models of the exact faces, the leaf pairs
 //! left from their closest points, and exact triangle tests where the meshes may intersect.
 
-use crate::cone_front::ConeFront;
-use crate::cone_traversal::{PairFrame, TraversalOutput, traverse, traverse_point};
-use crate::default_phase::{MeshScratch, PairKey};
-use crate::mesh_intersections::{intersect_candidates, report_mesh_intersections};
+use crate::cones::cone_front::ConeFront;
+use crate::cones::cone_traversal::{PairFrame, TraversalOutput, traverse, traverse_point};
+use crate::cones::normal_cone::{CriticalKinds, NormalCone};
+use crate::cones::patch_tree::{PatchLeaf, PatchNode, PatchTree, Piece};
 use crate::mesh_phase::{MeshOutput, MeshVerdict};
-use crate::normal_cone::{CriticalKinds, NormalCone};
-use crate::patch_tree::{PatchLeaf, PatchNode, PatchTree, Piece};
+use crate::pair_key::PairKey;
 use crate::query_side::Side;
-use crate::triangle_distance::{TrianglePoint, closest_between_triangles, closest_on_triangle};
+use crate::triangles::mesh_intersections::TriangleBuffers;
+use crate::triangles::mesh_intersections::{intersect_candidates, report_mesh_intersections};
+use crate::triangles::triangle_distance::{
+    TrianglePoint, closest_between_triangles, closest_on_triangle,
+};
 use geom_param::{DPose3, EdgeConvexity, EdgeId, FeatureLocation, Seed, SeedPoint};
 use glam::{DMat2, DVec2, DVec3};
 use std::collections::HashMap;
@@ -91,7 +94,7 @@ pub(crate) fn cone_path(
     pose_ab: &DPose3,
     delta2: f64,
     errors: f64,
-    scratch: &mut MeshScratch,
+    (path, scratch): (&mut ConeScratch, &mut TriangleBuffers),
     out: &mut MeshOutput,
 ) -> MeshVerdict {
     let (tree_a, built_a) = side_a.patches();
@@ -102,9 +105,9 @@ pub(crate) fn cone_path(
     let allowance = 1e-9 * (side_a.size + side_b.size);
     let reach = delta2.max(0.0) + allowance;
     let frame = PairFrame::new(pose_ab);
-    let traversal = &mut scratch.cone.traversal;
+    let traversal = &mut path.traversal;
     traversal.clear();
-    let front = scratch.cone.fronts.entry(key).or_default();
+    let front = path.fronts.entry(key).or_default();
     let moved = front.start((tree_a, tree_b), pose_ab, reach, traversal);
     traverse(tree_a, tree_b, &frame, (reach, moved), traversal);
     front.finish(traversal);
@@ -126,9 +129,7 @@ pub(crate) fn cone_path(
     // 1. Triangles whose volumes overlap: exact intersection tests (penetrating meshes).
     scratch.candidates.clear();
     scratch.candidates.extend(
-        scratch
-            .cone
-            .traversal
+        traversal
             .leaves
             .iter()
             .filter(|l| l.meshes_may_meet)
@@ -164,7 +165,7 @@ pub(crate) fn cone_path(
         made,
         rings: (rings_a, rings_b),
         ..
-    } = &mut scratch.cone;
+    } = path;
     found.clear();
     for stop in &traversal.certified {
         let (na, nb) = (
@@ -747,8 +748,8 @@ fn apex_seed(
 
 /// Two apexes within `reach` whose cones allow a critical pair, as a seed candidate.
 fn apex_pair(
-    (side_a, _, apex_a): (&Side<'_>, usize, &crate::patch_tree::Apex),
-    (side_b, _, apex_b): (&Side<'_>, usize, &crate::patch_tree::Apex),
+    (side_a, _, apex_a): (&Side<'_>, usize, &crate::cones::patch_tree::Apex),
+    (side_b, _, apex_b): (&Side<'_>, usize, &crate::cones::patch_tree::Apex),
     pose_ab: &DPose3,
     reach: f64,
 ) -> Option<Found> {

@@ -3,11 +3,11 @@
 //! against the other's mesh, grouped into connected collision regions whose centres become
 //! seeds.
 
-use crate::collision_regions::{group_regions, region_centres, region_extremes};
-use crate::default_phase::MeshScratch;
-use crate::mesh_intersections::{intersect_candidates, report_mesh_intersections};
 use crate::mesh_phase::{MeshOutput, MeshVerdict, RegionProbes};
 use crate::query_side::Side;
+use crate::triangles::collision_regions::{group_regions, region_centres, region_extremes};
+use crate::triangles::mesh_intersections::TriangleBuffers;
+use crate::triangles::mesh_intersections::{intersect_candidates, report_mesh_intersections};
 use geom_param::{ComponentKind, DPose3, Seed};
 use glam::DVec3;
 
@@ -15,19 +15,18 @@ use glam::DVec3;
 /// `errors` = e_A + e_B, for a proxy of a component of size `size` (mm):
 /// `max(delta2, 0) + errors + 1e-9 · size`.
 ///
-/// Why it suffices: two exact points within `delta2` have mesh points within
-/// `delta2 + e_A + e_B` (each mesh is within its chordal error of its surface), so the other
-/// mesh comes at least that close to this one and, unless the meshes intersect (step 1 of the
-/// triangle path), reaches a proxy that stands that far off (see [`crate::proxy_mesh::ProxyMesh`]
-/// for the shell's thickness). A negative `delta2` counts as 0, so that the proxy stays outside
-/// the mesh (a contact band below zero is a penetration band, which the mesh-mesh step and
-/// Stage 3 handle); the term `1e-9 · size`, far above the rounding of coordinates of magnitude
-/// `size` (about 1e-16 · size) yet far below any chordal tolerance a model accepts
-/// ([`geom_param::MIN_RELATIVE_TOLERANCE`] = 2e-5 of the object's size),
-/// keeps the offset positive on exactly flat meshes (e = 0) with `delta2 <= 0`, and makes a
-/// pair exactly at the band's edge still meet the proxy despite the rounding of the offset
-/// vertices. The value depends only on the band, the pair's errors and the proxy side's size,
-/// so repeated queries of a pair hit the same cached proxy.
+/// Why it suffices: two exact points within `delta2` have mesh points within `delta2 + e_A + e_B`
+/// (each mesh is within its chordal error of its surface), so the other mesh comes at least that
+/// close to this one and, unless the meshes intersect (step 1 of the triangle path), reaches a
+/// proxy that stands that far off (see [`crate::proxy::proxy_mesh::ProxyMesh`] for the shell's
+/// thickness). A negative `delta2` counts as 0, so that the proxy stays outside the mesh (a contact
+/// band below zero is a penetration band, which the mesh-mesh step and Stage 3 handle); the term
+/// `1e-9 · size`, far above the rounding of coordinates of magnitude `size` (about 1e-16 · size)
+/// yet far below any chordal tolerance a model accepts ([`geom_param::MIN_RELATIVE_TOLERANCE`] =
+/// 2e-5 of the object's size), keeps the offset positive on exactly flat meshes (e = 0) with
+/// `delta2 <= 0`, and makes a pair exactly at the band's edge still meet the proxy despite the
+/// rounding of the offset vertices. The value depends only on the band, the pair's errors and the
+/// proxy side's size, so repeated queries of a pair hit the same cached proxy.
 fn proxy_offset(delta2: f64, errors: f64, size: f64) -> f64 {
     delta2.max(0.0) + errors + 1e-9 * size
 }
@@ -39,7 +38,7 @@ pub(crate) fn triangle_path(
     pose_ab: &DPose3,
     delta2: f64,
     errors: f64,
-    scratch: &mut MeshScratch,
+    scratch: &mut TriangleBuffers,
     out: &mut MeshOutput,
 ) -> MeshVerdict {
     let (ma, mb) = (side_a.mesh, side_b.mesh);
@@ -145,9 +144,10 @@ pub(crate) fn triangle_path(
     }
 }
 
-/// One seed per contact region centre (A's frame), as [`push_region_seeds`], each with its
-/// [`RegionProbes`]: the region's radius and seeds at the two ends of its loop (`extremes`,
-/// from [`region_extremes`]). A region whose centre or ends find no mesh point gets no probes.
+/// One seed per contact region centre (A's frame), as
+/// [`push_region_seeds`](crate::triangles::mesh_intersections::push_region_seeds), each with its
+/// [`RegionProbes`]: the region's radius and seeds at the two ends of its loop (`extremes`, from
+/// [`region_extremes`]). A region whose centre or ends find no mesh point gets no probes.
 fn push_contact_region_seeds(
     side_a: &Side<'_>,
     side_b: &Side<'_>,

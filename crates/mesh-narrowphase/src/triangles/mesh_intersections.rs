@@ -2,13 +2,33 @@
 //! them: the intersecting pairs, one witness point per connected region, and one seed per
 //! region for Stage 3 to confirm the penetration on the exact surfaces.
 
-use crate::collision_regions::{IntersectionSegment, RegionScratch, group_regions, region_centres};
 use crate::mesh_phase::{MeshOutput, MeshStats};
-use crate::plane_filter::clearly_apart;
 use crate::query_side::Side;
-use crate::triangle_intersection::{TriangleContact, intersect_triangles};
+use crate::triangles::collision_regions::{
+    IntersectionSegment, RegionScratch, group_regions, region_centres,
+};
+use crate::triangles::plane_filter::clearly_apart;
+use crate::triangles::triangle_intersection::{TriangleContact, intersect_triangles};
 use geom_param::{DPose3, Seed};
 use glam::DVec3;
+
+/// Buffers of the triangle tests and of the regions they group into, kept across queries
+/// (both concave paths use them).
+#[derive(Debug, Default)]
+pub(crate) struct TriangleBuffers {
+    /// Candidate triangle pairs (A's, B's) of a tree traversal or of leaf pairs.
+    pub(crate) candidates: Vec<(u32, u32)>,
+    /// The intersection segments of the pairs that intersect.
+    pub(crate) segments: Vec<IntersectionSegment>,
+    /// The region of each segment.
+    pub(crate) region_of: Vec<u32>,
+    /// The grouping's own buffers.
+    pub(crate) regions: RegionScratch,
+    /// Each region's centre p_ci (A's frame).
+    pub(crate) centres: Vec<DVec3>,
+    /// Each region's radius and the two ends of its loop (A's frame).
+    pub(crate) extremes: Vec<(f64, [DVec3; 2])>,
+}
 
 /// Runs the exact triangle test on every candidate pair (B's triangles moved into A's frame)
 /// and collects the intersection segments; a coplanar overlap contributes its polygon's edges.

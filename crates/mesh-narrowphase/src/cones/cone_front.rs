@@ -5,9 +5,9 @@
 //! A node pair dropped because its volumes were `s` farther apart than the reach stays dropped
 //! while B moves by less than `s`: the distance between two sets shrinks by at most the motion
 //! of either. Pairs dropped by their cones carry a margin of their own
-//! ([`crate::cone_traversal::CONE_CARRY`]), and leaf pairs are kept as leaf pairs, untested
-//! ([`crate::cone_traversal::KeptLeaf`]): those with a possible critical pair for a motion of
-//! [`crate::cone_traversal::LEAF_CARRY`] of their balls (keeping one is always sound: it only
+//! ([`crate::cones::cone_traversal::CONE_CARRY`]), and leaf pairs are kept as leaf pairs, untested
+//! ([`crate::cones::cone_traversal::KeptLeaf`]): those with a possible critical pair for a motion of
+//! [`crate::cones::cone_traversal::LEAF_CARRY`] of their balls (keeping one is always sound: it only
 //! adds a candidate), those whose meshes may meet for as long as their cones rule out a
 //! critical pair. So a query only re-tests the front's other pairs (certified, leaves whose
 //! cones would not hold) and those whose margin the motion since the front's reference pose
@@ -15,8 +15,8 @@
 //! answer is the one the traversal from the root gives, up to which of equally valid stopping
 //! pairs it reaches and the kept leaf pairs that a fresh traversal would have dropped since.
 
-use crate::cone_traversal::{FrontEntry, TraversalOutput};
-use crate::patch_tree::PatchTree;
+use crate::cones::cone_traversal::{FrontEntry, TraversalOutput};
+use crate::cones::patch_tree::PatchTree;
 use geom_param::DPose3;
 
 /// The front of one component pair (see the module documentation).
@@ -61,7 +61,7 @@ impl ConeFront {
 
     /// Prepares `out` (cleared by the caller) for this query of the pair: queues the front's
     /// pairs that must be tested again, keeps the others and returns the motion bound `moved`
-    /// (mm) of B since the reference pose, to pass to [`crate::cone_traversal::traverse`]; or,
+    /// (mm) of B since the reference pose, to pass to [`crate::cones::cone_traversal::traverse`]; or,
     /// when there is no usable front, queues the root pair and returns 0.
     ///
     /// The motion of a point x of B's component between poses (R0, t0) and (R1, t1) is

@@ -1,12 +1,12 @@
-//! Simultaneous traversal of two patch trees ([`crate::patch_tree`]) under a relative pose:
+//! Simultaneous traversal of two patch trees ([`crate::cones::patch_tree`]) under a relative pose:
 //! node pairs farther apart than the band, or whose normal cones rule out every critical pair
 //! of the distance (and that cannot intersect), are dropped; pairs certified to hold at most one
 //! local minimum stop there; the rest descend to leaf pairs. Apexes are points traversed
 //! against the other tree.
 
-use crate::normal_cone::{CriticalKinds, NormalBand, NormalCone};
-use crate::patch_tree::{PatchLeaf, PatchNode, PatchTree};
-use crate::triangle_distance::separating_gap;
+use crate::cones::normal_cone::{CriticalKinds, NormalBand, NormalCone};
+use crate::cones::patch_tree::{PatchLeaf, PatchNode, PatchTree};
+use crate::triangles::triangle_distance::separating_gap;
 use geom_param::DPose3;
 use glam::{DMat3, DVec3};
 
@@ -36,7 +36,7 @@ pub struct StopPair {
 }
 
 /// A node pair where a traversal stopped, kept for the next query of the same pair
-/// ([`crate::cone_front`]).
+/// ([`crate::cones::cone_front`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FrontEntry {
     /// Node of A's tree.
@@ -54,7 +54,7 @@ pub struct FrontEntry {
     pub slack: f64,
     /// Dropped by its cones: when the motion uses its slack up, the pair is tested again like
     /// every pair with a negative slack (it does not count towards rebuilding the front, see
-    /// [`crate::cone_front`]).
+    /// [`crate::cones::cone_front`]).
     pub by_cones: bool,
     /// A leaf pair kept as a leaf pair, without being tested again, while its slack lasts
     /// ([`KeptLeaf`]).
@@ -248,7 +248,7 @@ pub fn slab_lower_bound(
 /// from w by at most τ = max(θ_A, θ_B) + ½ angle(axis_A, -axis_B) (below 90°: the cone test
 /// keeps the misalignment below θ_A + θ_B). The gap between the patches (B's height minus A's
 /// along w) has Hessian H_A + H_B, each a graph's height Hessian: its curvature tensor
-/// ([`crate::patch_tree::CurvatureTensor`], library sign, convex positive, both facing each
+/// ([`crate::cones::patch_tree::CurvatureTensor`], library sign, convex positive, both facing each
 /// other) restricted to Π and distorted by the tilt: H = c⁻¹ G^½ S G^½ with G's eigenvalues in
 /// [1, c⁻²], c = cos τ, so ‖H - S‖ <= (c⁻³ - 1)‖S‖. Every sampled tensor of a node lies within
 /// its spread ε of the node's mean C̄ (Frobenius norm, which bounds the spectral norm of the

@@ -14,7 +14,7 @@
 //! the mesh's chordal error, for slivers narrower than that), so that every leaf is spatially
 //! compact and its normals and curvature are sampled at its own corners.
 
-use crate::normal_cone::{NormalBand, NormalCone};
+use crate::cones::normal_cone::{NormalBand, NormalCone};
 use geom_param::{
     ComponentMesh, EdgeConvexity, EdgeId, FaceConvexity, FaceId, FeatureLocation, Solid,
     SurfacePoint,

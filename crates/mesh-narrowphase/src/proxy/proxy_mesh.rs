@@ -1,7 +1,7 @@
 //! Proxy meshes: a component mesh offset outwards along its vertex normals, built lazily once
 //! per component and offset.
 
-use crate::triangle_bvh::TriangleBvh;
+use crate::triangles::triangle_bvh::TriangleBvh;
 use geom_param::ComponentMesh;
 use glam::DVec3;
 use std::sync::{Arc, OnceLock, PoisonError, RwLock};
