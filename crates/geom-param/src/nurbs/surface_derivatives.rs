@@ -14,6 +14,10 @@ use crate::nurbs::{BINOMIAL, MAX_ORDER};
 /// weighted point and w_kl of the weight; A4.4 (RatSurfaceDerivs) divides out the weight:
 /// S_kl = (A_kl − Σ_{j=1..l} C(l,j) w_0j S_k,l−j − Σ_{i=1..k} C(k,i) w_i0 S_k−i,l
 ///         − Σ_{i=1..k} C(k,i) Σ_{j=1..l} C(l,j) w_ij S_k−i,l−j) / w_00.
+///
+/// Degrees 1 to 3 in each direction run a copy with the degrees and the scratch sizes fixed at
+/// compile time (loops unrolled, only their own scratch cleared); the arithmetic is the same,
+/// operation for operation, so the values are bit for bit those of the general copy.
 pub(crate) fn rational_surface_derivatives<P: ControlPoint>(
     basis: &[BSplineBasis; 2],
     points: &[P],
@@ -21,15 +25,39 @@ pub(crate) fn rational_surface_derivatives<P: ControlPoint>(
     u: f64,
     v: f64,
 ) -> [[P; 3]; 3] {
-    let (p, q) = (basis[0].degree(), basis[1].degree());
+    let net = (basis, points, weights);
+    match (basis[0].degree(), basis[1].degree()) {
+        (1, 1) => derivatives_of::<P, 2, 2>(net, (1, 1), u, v),
+        (1, 2) => derivatives_of::<P, 2, 3>(net, (1, 2), u, v),
+        (1, 3) => derivatives_of::<P, 2, 4>(net, (1, 3), u, v),
+        (2, 1) => derivatives_of::<P, 3, 2>(net, (2, 1), u, v),
+        (2, 2) => derivatives_of::<P, 3, 3>(net, (2, 2), u, v),
+        (2, 3) => derivatives_of::<P, 3, 4>(net, (2, 3), u, v),
+        (3, 1) => derivatives_of::<P, 4, 2>(net, (3, 1), u, v),
+        (3, 2) => derivatives_of::<P, 4, 3>(net, (3, 2), u, v),
+        (3, 3) => derivatives_of::<P, 4, 4>(net, (3, 3), u, v),
+        degrees => derivatives_of::<P, MAX_ORDER, MAX_ORDER>(net, degrees, u, v),
+    }
+}
+
+/// [`rational_surface_derivatives`] for degrees `(p, q)` <= (`OU` − 1, `OV` − 1), with scratch
+/// arrays of `OV` entries.
+#[inline(always)]
+fn derivatives_of<P: ControlPoint, const OU: usize, const OV: usize>(
+    (basis, points, weights): (&[BSplineBasis; 2], &[P], &[f64]),
+    (p, q): (usize, usize),
+    u: f64,
+    v: f64,
+) -> [[P; 3]; 3] {
+    debug_assert!(p < OU && q < OV);
     let count_v = basis[1].count();
     let (span_u, span_v) = (basis[0].find_span(u), basis[1].find_span(v));
     let nu = basis[0].derivatives(span_u, u);
     let nv = basis[1].derivatives(span_v, v);
     // temp[k][s]: the k-th u-derivative of the homogeneous column s of the span's sub-net,
     // all three orders in one pass over the net.
-    let mut temp = [[P::ZERO; MAX_ORDER]; 3];
-    let mut temp_w = [[0.0; MAX_ORDER]; 3];
+    let mut temp = [[P::ZERO; OV]; 3];
+    let mut temp_w = [[0.0; OV]; 3];
     for s in 0..=q {
         for (r, row) in (span_u - p..=span_u).enumerate() {
             let index = row * count_v + span_v - q + s;
@@ -70,4 +98,46 @@ pub(crate) fn rational_surface_derivatives<P: ControlPoint>(
         }
     }
     skl
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{derivatives_of, rational_surface_derivatives};
+    use crate::nurbs::MAX_ORDER;
+    use crate::nurbs::basis::tests::uneven_basis;
+    use glam::DVec3;
+
+    /// The copies for degrees 1 to 3 in each direction give bit for bit the values of the
+    /// general copy, on a rational net with uneven knots and weights, over the whole domain.
+    #[test]
+    fn fixed_degree_copies_match_the_general_one_exactly() {
+        for p in 1..=3 {
+            for q in 1..=3 {
+                let basis = [uneven_basis(p, p + 5), uneven_basis(q, q + 4)];
+                let (nu, nv) = (basis[0].count(), basis[1].count());
+                let points: Vec<DVec3> = (0..nu * nv)
+                    .map(|k| {
+                        let (i, j) = ((k / nv) as f64, (k % nv) as f64);
+                        DVec3::new(i, j, (0.7 * i).sin() + (0.4 * j).cos())
+                    })
+                    .collect();
+                let weights: Vec<f64> = (0..nu * nv).map(|k| 0.6 + 0.1 * (k % 7) as f64).collect();
+                let ((u0, u1), (v0, v1)) = (basis[0].domain(), basis[1].domain());
+                for a in 0..=24 {
+                    for b in 0..=24 {
+                        let u = u0 + (u1 - u0) * f64::from(a) / 24.0;
+                        let v = v0 + (v1 - v0) * f64::from(b) / 24.0;
+                        let general = derivatives_of::<DVec3, MAX_ORDER, MAX_ORDER>(
+                            (&basis, &points, &weights),
+                            (p, q),
+                            u,
+                            v,
+                        );
+                        let fixed = rational_surface_derivatives(&basis, &points, &weights, u, v);
+                        assert_eq!(fixed, general, "degrees ({p}, {q}) at ({u}, {v})");
+                    }
+                }
+            }
+        }
+    }
 }
