@@ -24,6 +24,10 @@ use std::collections::HashMap;
 pub struct ConeScratch {
     traversal: TraversalOutput,
     found: Vec<Found>,
+    /// The critical leaf pairs' lower bounds ([`ordered_bits`]) and indices, nearest first.
+    nearest_first: Vec<u128>,
+    /// Indices into `found`, closest first (a candidate is too large to sort by moving it).
+    order: Vec<usize>,
     kept: Vec<usize>,
     made: Vec<(f64, Seed)>,
     /// The triangles holding a candidate's points ([`mesh_local_minimum`]), A's and B's.
@@ -161,6 +165,8 @@ pub(crate) fn cone_path(
     let ConeScratch {
         traversal,
         found,
+        nearest_first,
+        order,
         kept,
         made,
         rings: (rings_a, rings_b),
@@ -181,11 +187,20 @@ pub(crate) fn cone_path(
     // below (its radius is at least its balls'), so it is skipped before its closest points are
     // computed.
     let first_leaf = found.len();
-    // Nearest pairs first: their candidates, made first, cover the pairs around them.
-    traversal
-        .leaves
-        .sort_unstable_by(|x, y| x.lower.total_cmp(&y.lower));
-    for leaf in traversal.leaves.iter().filter(|l| l.critical) {
+    // Nearest pairs first: their candidates, made first, cover the pairs around them. Sorted as
+    // integer keys (the lower bound's order above the pair's index): sorting the pairs
+    // themselves by `total_cmp` was a tenth of a pencil-on-tube query.
+    nearest_first.clear();
+    nearest_first.extend(
+        (traversal.leaves.iter().enumerate())
+            .filter(|(_, l)| l.critical)
+            .map(|(k, l)| (u128::from(ordered_bits(l.lower)) << 64) | k as u128),
+    );
+    nearest_first.sort_unstable();
+    for leaf in nearest_first
+        .iter()
+        .map(|&key| &traversal.leaves[key as u64 as usize])
+    {
         if let Some(pair) = triangle_pair(tree_a, tree_b, leaf.a, leaf.b) {
             if leaf.meshes_may_meet && out.penetrating_pairs.contains(&pair) {
                 continue;
@@ -241,10 +256,16 @@ pub(crate) fn cone_path(
     }
 
     // 3. One seed per minimum, closest first.
-    found.sort_unstable_by(|x, y| x.rank.0.cmp(&y.rank.0).then(x.rank.1.total_cmp(&y.rank.1)));
+    order.clear();
+    order.extend(0..found.len());
+    order.sort_unstable_by(|&i, &j| {
+        let (x, y) = (&found[i].rank, &found[j].rank);
+        x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)).then(i.cmp(&j))
+    });
     kept.clear();
     made.clear();
-    for (i, f) in found.iter().enumerate() {
+    for (position, &i) in order.iter().enumerate() {
+        let f = &found[i];
         let near = |k: &Found| {
             let r = k.radius.min(f.radius);
             let near = k.point_a.distance(f.point_a) <= r && k.point_b.distance(f.point_b) <= r;
@@ -274,7 +295,8 @@ pub(crate) fn cone_path(
             let g = &found[k];
             near(g) && !off_its_ridge(g) && !kept_apart(g)
         });
-        if duplicate || superseded(&found[..i], f, &mut kept_apart) {
+        let earlier = order[..position].iter().map(|&k| &found[k]);
+        if duplicate || superseded(earlier, f, &mut kept_apart) {
             continue;
         }
         let seed = match f.source {
@@ -300,8 +322,18 @@ pub(crate) fn cone_path(
     }
 }
 
+/// The bits of `x` as an unsigned integer in the order of [`f64::total_cmp`].
+fn ordered_bits(x: f64) -> u64 {
+    let bits = x.to_bits();
+    if bits >> 63 == 1 {
+        !bits
+    } else {
+        bits | 1 << 63
+    }
+}
+
 /// Whether the leaf pair's candidate `f` is not a local minimum of the distance between leaf
-/// pairs: an earlier candidate of `earlier` (sorted by distance) from a neighbouring leaf pair
+/// pairs: an earlier candidate of `earlier` (closest first) from a neighbouring leaf pair
 /// (points within the sum of the two candidates' radii on both sides, so that the pairs' balls
 /// meet on both sides) is closer by more than the two mesh distances' error bounds, so that the
 /// exact surfaces are certainly closer there too. Along a valley of the distance that falls
@@ -315,11 +347,15 @@ pub(crate) fn cone_path(
 /// one when any lower neighbour superseded.
 ///
 /// A neighbour for which `kept_apart` holds does not supersede.
-fn superseded(earlier: &[Found], f: &Found, mut kept_apart: impl FnMut(&Found) -> bool) -> bool {
+fn superseded<'f>(
+    mut earlier: impl Iterator<Item = &'f Found>,
+    f: &Found,
+    mut kept_apart: impl FnMut(&Found) -> bool,
+) -> bool {
     if f.leaf.is_none() {
         return false;
     }
-    earlier.iter().any(|g| {
+    earlier.any(|g| {
         let r = f.radius + g.radius;
         certainly_lower(g, f)
             && g.point_a.distance(f.point_a) <= r

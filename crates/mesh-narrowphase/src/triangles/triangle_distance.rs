@@ -147,75 +147,71 @@ fn segment_parameters(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> (f64, f64) 
 /// the other triangle and the nine edge pairs). Exact for disjoint triangles up to rounding;
 /// for intersecting triangles the distance found may be positive (an edge piercing the other
 /// triangle's interior is not among the cases), so callers test intersection separately.
+///
+/// The cases are compared by squared distance and only the best one's points and barycentric
+/// coordinates are built (a leaf pair's closest points are most of the normal-cone path's
+/// cost on long contacts, sixty of them per query along a tube's rim).
 #[must_use]
 pub fn closest_between_triangles(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> TrianglePair {
-    let mut best = {
-        let b = closest_on_triangle(t1[0], t2);
-        let mut a = [0.0; 3];
-        a[0] = 1.0;
-        TrianglePair {
-            a: TrianglePoint {
-                point: t1[0],
-                barycentric: a,
-            },
-            distance: t1[0].distance(b.point),
-            b,
-        }
-    };
-    let mut consider = |pair: TrianglePair| {
-        if pair.distance < best.distance {
-            best = pair;
+    /// The best case so far: a corner of either triangle against the other, or an edge pair
+    /// with its two segment parameters.
+    #[derive(Clone, Copy)]
+    enum Case {
+        CornerOfFirst(usize, TrianglePoint),
+        CornerOfSecond(usize, TrianglePoint),
+        Edges((usize, usize), (usize, usize), f64, f64),
+    }
+    const EDGES: [(usize, usize); 3] = [(0, 1), (1, 2), (2, 0)];
+    let first = closest_on_triangle(t1[0], t2);
+    let mut best = (t1[0].distance_squared(first.point), Case::CornerOfFirst(0, first));
+    let mut consider = |squared: f64, case: Case| {
+        if squared < best.0 {
+            best = (squared, case);
         }
     };
     for i in 0..3 {
-        let mut unit = [0.0; 3];
-        unit[i] = 1.0;
         if i > 0 {
             let b = closest_on_triangle(t1[i], t2);
-            consider(TrianglePair {
-                a: TrianglePoint {
-                    point: t1[i],
-                    barycentric: unit,
-                },
-                distance: t1[i].distance(b.point),
-                b,
-            });
+            consider(t1[i].distance_squared(b.point), Case::CornerOfFirst(i, b));
         }
         let a = closest_on_triangle(t2[i], t1);
-        consider(TrianglePair {
-            distance: t2[i].distance(a.point),
-            a,
-            b: TrianglePoint {
-                point: t2[i],
-                barycentric: unit,
-            },
-        });
+        consider(t2[i].distance_squared(a.point), Case::CornerOfSecond(i, a));
     }
-    const EDGES: [(usize, usize); 3] = [(0, 1), (1, 2), (2, 0)];
     for (i1, j1) in EDGES {
         for (i2, j2) in EDGES {
             let (s, t) = segment_parameters(t1[i1], t1[j1], t2[i2], t2[j2]);
-            let (mut ba, mut bb) = ([0.0; 3], [0.0; 3]);
-            ba[i1] = 1.0 - s;
-            ba[j1] = s;
-            bb[i2] = 1.0 - t;
-            bb[j2] = t;
             let pa = t1[i1] + (t1[j1] - t1[i1]) * s;
             let pb = t2[i2] + (t2[j2] - t2[i2]) * t;
-            consider(TrianglePair {
-                a: TrianglePoint {
-                    point: pa,
-                    barycentric: ba,
-                },
-                b: TrianglePoint {
-                    point: pb,
-                    barycentric: bb,
-                },
-                distance: pa.distance(pb),
-            });
+            consider(pa.distance_squared(pb), Case::Edges((i1, j1), (i2, j2), s, t));
         }
     }
-    best
+    let corner = |t: &[DVec3; 3], i: usize| {
+        let mut barycentric = [0.0; 3];
+        barycentric[i] = 1.0;
+        TrianglePoint {
+            point: t[i],
+            barycentric,
+        }
+    };
+    let on_edge = |t: &[DVec3; 3], (i, j): (usize, usize), s: f64| {
+        let mut barycentric = [0.0; 3];
+        barycentric[i] = 1.0 - s;
+        barycentric[j] = s;
+        TrianglePoint {
+            point: t[i] + (t[j] - t[i]) * s,
+            barycentric,
+        }
+    };
+    let (a, b) = match best.1 {
+        Case::CornerOfFirst(i, b) => (corner(t1, i), b),
+        Case::CornerOfSecond(i, a) => (a, corner(t2, i)),
+        Case::Edges(e1, e2, s, t) => (on_edge(t1, e1, s), on_edge(t2, e2, t)),
+    };
+    TrianglePair {
+        distance: a.point.distance(b.point),
+        a,
+        b,
+    }
 }
 
 /// A lower bound (mm) on the distance between two triangles by separating axes: the largest
