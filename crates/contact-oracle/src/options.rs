@@ -1,6 +1,6 @@
 //! What the oracle looks for and how finely.
 
-use crate::sampling::object_extent;
+use crate::samples::sampling::object_extent;
 use geom_param::Solid;
 
 /// Sampling and acceptance parameters (all mm).

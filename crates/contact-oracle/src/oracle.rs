@@ -3,17 +3,18 @@
 
 use crate::cross_check::compare;
 use crate::error::OracleError;
-use crate::found::{contact, merge, separated_through_material, through_material};
-use crate::held::Held;
-use crate::kdtree::KdTree;
-use crate::local_minima::{self, NEIGHBOURHOOD, Outcome};
+use crate::minima::found::{contact, merge, separated_through_material, through_material};
+use crate::minima::local_minima::{self, NEIGHBOURHOOD, Outcome};
+use crate::minima::penetration;
+use crate::minima::regions;
 use crate::options::OracleOptions;
-use crate::penetration;
-use crate::polish::{self, Limits, Pair, Polished};
-use crate::posed::PosedSolid;
-use crate::regions;
+use crate::polishing::pair::Pair;
+use crate::polishing::polish::{self, Limits, Polished};
 use crate::report::{OracleContact, OracleReport, RegionMember};
-use crate::sampling::{self, Sample};
+use crate::samples::kdtree::KdTree;
+use crate::samples::sampling::{self, Sample};
+use crate::solids::held::Held;
+use crate::solids::posed::PosedSolid;
 use geom_param::{DPose3, FeatureLocation, Solid};
 
 /// Most samples of one solid in one run (a `Sample` is 72 bytes: at most ~72 MB per solid).

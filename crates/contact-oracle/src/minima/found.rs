@@ -1,12 +1,13 @@
 //! A polished pair turned into a contact: signed distance, normal, and merging of duplicates.
 
-use crate::conditioning::point_error_bound;
-use crate::held::Held;
-use crate::kdtree::KdTree;
-use crate::polish::{self, Limits, Pair, Polished};
-use crate::posed::PosedSolid;
+use crate::polishing::conditioning::point_error_bound;
+use crate::polishing::pair::Pair;
+use crate::polishing::polish::{self, Limits, Polished};
 use crate::report::OracleContact;
-use crate::sampling::Sample;
+use crate::samples::kdtree::KdTree;
+use crate::samples::sampling::Sample;
+use crate::solids::held::Held;
+use crate::solids::posed::PosedSolid;
 use geom_param::FeatureLocation;
 
 /// Builds the contact for a polished pair. The distance is |S_b − S_a|, negative when

@@ -1,18 +1,19 @@
 //! Local minima of distance between the two surfaces (distance >= 0): discrete minima of the
-//! nearest-sample distance, polished by [`crate::polish::minimise`] and accepted only where
-//! they are local minima of the distance on the union of faces, edges and vertices: stationary
-//! over the parameters of the features the points are on, the reduced Hessian over those
-//! parameters positive semi-definite, and (held on an edge or vertex) no descent into a
+//! nearest-sample distance, polished by [`crate::polishing::polish::minimise`] and accepted
+//! only where they are local minima of the distance on the union of faces, edges and vertices:
+//! stationary over the parameters of the features the points are on, the reduced Hessian over
+//! those parameters positive semi-definite, and (held on an edge or vertex) no descent into a
 //! neighbouring feature, i.e. the connecting vector in the feature's normal cone.
 
-use crate::feature_moves::in_normal_cone;
-use crate::held::Held;
-use crate::kdtree::KdTree;
-use crate::linalg::{self, N};
-use crate::penetration;
-use crate::polish::{self, Limits, Pair, Polished};
-use crate::posed::PosedSolid;
-use crate::sampling::Sample;
+use crate::minima::penetration;
+use crate::polishing::feature_moves::in_normal_cone;
+use crate::polishing::linalg::{self, N};
+use crate::polishing::pair::Pair;
+use crate::polishing::polish::{self, Limits, Polished};
+use crate::samples::kdtree::KdTree;
+use crate::samples::sampling::Sample;
+use crate::solids::held::Held;
+use crate::solids::posed::PosedSolid;
 use geom_param::{Boundary, FaceId, FeatureLocation, ParamSide};
 use glam::{DVec2, DVec3};
 

@@ -1,11 +1,11 @@
 //! Penetration witnesses: pairs where the surfaces overlap, locally deepest.
 //!
 //! The signed distance of A's surface to B, φ(u_a, v_a) = (S_a − S_b) · n_b at the foot S_b of
-//! S_a on B (a point–surface Newton projection, [`crate::polish::minimise`] with A's parameters
-//! frozen), is negative where A is inside B. A witness is a local minimum of φ with φ < 0: there
-//! ∇φ = (n_b · S_a,u, n_b · S_a,v) = 0, so the connecting vector is anti-parallel to both normals,
-//! and the pair is a saddle of f = ½|S_a − S_b|², finally polished by plain Newton on ∇f = 0
-//! ([`crate::polish::stationary`]).
+//! S_a on B (a point–surface Newton projection, [`crate::polishing::polish::minimise`] with A's
+//! parameters frozen), is negative where A is inside B. A witness is a local minimum of φ with
+//! φ < 0: there ∇φ = (n_b · S_a,u, n_b · S_a,v) = 0, so the connecting vector is anti-parallel
+//! to both normals, and the pair is a saddle of f = ½|S_a − S_b|², finally polished by plain
+//! Newton on ∇f = 0 ([`crate::polishing::polish::stationary`]).
 //!
 //! Starts: the deepest sample of each connected region of A's samples inside B, and every
 //! crossing the minimum search ran into (a crossing too small to hold a sample is still found,
@@ -13,15 +13,16 @@
 //!
 //! On a trimmed face of A the descent stays inside the trim (a step that leaves it is refused),
 //! and a witness must lie inside it, away from its boundary; B's foot may be anywhere on B,
-//! its faces, edges and vertices ([`crate::polish::minimise`]).
+//! its faces, edges and vertices ([`crate::polishing::polish::minimise`]).
 
-use crate::feature_moves::{self, MAX_SWITCHES, TrimStep};
-use crate::held::Held;
-use crate::kdtree::KdTree;
-use crate::linalg::{self, N};
-use crate::polish::{self, Limits, Pair, Polished};
-use crate::posed::PosedSolid;
-use crate::sampling::Sample;
+use crate::polishing::feature_moves::{self, MAX_SWITCHES, TrimStep};
+use crate::polishing::linalg::{self, N};
+use crate::polishing::pair::Pair;
+use crate::polishing::polish::{self, Limits, Polished};
+use crate::samples::kdtree::KdTree;
+use crate::samples::sampling::Sample;
+use crate::solids::held::Held;
+use crate::solids::posed::PosedSolid;
 use geom_param::{Boundary, ParamSide};
 
 /// φ and its gradient at one point of A.

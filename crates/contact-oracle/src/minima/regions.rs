@@ -25,11 +25,12 @@
 //! common face on either solid are not compared (kept apart), nor are they when a step's
 //! projection does not converge.
 
-use crate::held::Held;
-use crate::penetration;
-use crate::polish::{Limits, Pair};
-use crate::posed::PosedSolid;
+use crate::minima::penetration;
+use crate::polishing::pair::Pair;
+use crate::polishing::polish::Limits;
 use crate::report::{OracleContact, RegionMember};
+use crate::solids::held::Held;
+use crate::solids::posed::PosedSolid;
 use geom_param::{FaceId, FeatureLocation};
 
 /// Steps of a connecting path.

@@ -12,8 +12,8 @@
 //! The gap's curvature κ is the smallest eigenvalue of H evaluated at a separation
 //! ℓ = max(|d|, 1e3 x tolerance) along the contact normal, divided by ℓ.
 
-use crate::linalg::{self, N};
-use crate::polish::Polished;
+use crate::polishing::linalg::{self, N};
+use crate::polishing::polish::Polished;
 use glam::DVec3;
 
 /// Relative rounding of coordinates in the residual (16 ε).

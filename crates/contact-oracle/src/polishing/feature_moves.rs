@@ -9,10 +9,10 @@
 //! connecting vector lies in the edge's normal cone); a vertex, when f descends along none of
 //! its edges and into none of its faces.
 
-use crate::held::Held;
-use crate::linalg::N;
-use crate::polish::Pair;
-use crate::posed::PosedSolid;
+use crate::polishing::linalg::N;
+use crate::polishing::pair::Pair;
+use crate::solids::held::Held;
+use crate::solids::posed::PosedSolid;
 use geom_param::{EdgeOn, FaceId, ParamSide};
 use glam::{DVec2, DVec3};
 

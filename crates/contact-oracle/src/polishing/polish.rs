@@ -11,10 +11,9 @@
 //!   parameter towards the steepest descent into the face.
 //!   On a trimmed face the region is the trim instead: a step that leaves it stops where it
 //!   crosses the boundary and the point is held on the crossed edge, with the edge's t as its
-//!   one parameter ([`crate::feature_moves`]); from an edge the polish moves into either face
-//!   when f descends into it, onto the end vertex when descent runs past the edge's end, and
-//!   from a vertex along any edge or into any face there with descent.
-//! - [`stationary`]: plain Newton on ∇f = 0 (penetration witnesses are saddles of f).
+//!   one parameter ([`crate::polishing::feature_moves`]); from an edge the polish moves into
+//!   either face when f descends into it, onto the end vertex when descent runs past the edge's
+//!   end, and from a vertex along any edge or into any face there with descent.
 //!
 //! A point held on an edge or at a vertex ([`Held`]) keeps its slots: the edge's t is the
 //! first parameter of its solid (its column the curve's tangent, its second derivative the
@@ -23,10 +22,11 @@
 //! Residuals are measured in 3-d: |g_k| / |c_k| is the component of the connecting vector
 //! along parameter direction k, which stays meaningful at a pole where |c_k| -> 0.
 
-use crate::feature_moves::{self, MAX_SWITCHES, TrimStep};
-use crate::held::Held;
-use crate::linalg::{self, N};
-use crate::posed::PosedSolid;
+use crate::polishing::feature_moves::{self, MAX_SWITCHES, TrimStep};
+use crate::polishing::linalg::{self, N};
+use crate::polishing::pair::Pair;
+use crate::solids::held::Held;
+use crate::solids::posed::PosedSolid;
 use geom_param::{Boundary, FaceId, ParamSide, SurfacePoint};
 use glam::DVec3;
 
@@ -34,73 +34,6 @@ use glam::DVec3;
 const MAX_MOVES: u32 = 16;
 /// Directions probed at a pole or apex for descent into the face.
 const POLE_DIRECTIONS: usize = 32;
-
-/// A pair of points: A's face and (u, v), B's face and (u, v), and for each whether it is free
-/// on that face or held on an edge or vertex of it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Pair {
-    pub fa: FaceId,
-    pub a: [f64; 2],
-    pub fb: FaceId,
-    pub b: [f64; 2],
-    pub held_a: Held,
-    pub held_b: Held,
-}
-
-impl Pair {
-    /// Two points free on their faces.
-    pub fn faces(fa: FaceId, a: [f64; 2], fb: FaceId, b: [f64; 2]) -> Self {
-        Self {
-            fa,
-            a,
-            fb,
-            b,
-            held_a: Held::Face,
-            held_b: Held::Face,
-        }
-    }
-
-    /// A's point (`on_a`) or B's: face, (u, v), feature.
-    pub fn side(&self, on_a: bool) -> (FaceId, [f64; 2], Held) {
-        if on_a {
-            (self.fa, self.a, self.held_a)
-        } else {
-            (self.fb, self.b, self.held_b)
-        }
-    }
-
-    /// Replaces A's point (`on_a`) or B's.
-    pub fn set_side(&mut self, on_a: bool, face: FaceId, uv: [f64; 2], held: Held) {
-        if on_a {
-            (self.fa, self.a, self.held_a) = (face, uv, held);
-        } else {
-            (self.fb, self.b, self.held_b) = (face, uv, held);
-        }
-    }
-
-    /// The parameters that exist (see [`Held::dims`]): A's two, then B's two.
-    pub fn dims(&self) -> [bool; N] {
-        let (a, b) = (self.held_a.dims(), self.held_b.dims());
-        [a[0], a[1], b[0], b[1]]
-    }
-
-    /// Both points free on their faces.
-    pub fn on_faces(&self) -> bool {
-        self.held_a == Held::Face && self.held_b == Held::Face
-    }
-
-    /// B's point first.
-    pub fn swapped(&self) -> Self {
-        Self {
-            fa: self.fb,
-            a: self.b,
-            fb: self.fa,
-            b: self.a,
-            held_a: self.held_b,
-            held_b: self.held_a,
-        }
-    }
-}
 
 /// `x` and `y`, slot by slot.
 pub(crate) fn both(x: [bool; N], y: [bool; N]) -> [bool; N] {

@@ -11,9 +11,9 @@
 //! of a rectangle (both its uses on trims) gets samples at about `spacing` along its curve,
 //! its end vertices included, each a [`Sample`] of its first use's face at the use's (u, v).
 
-use crate::kdtree::KdTree;
-use crate::posed::PosedSolid;
-use crate::trim_grid::{Region, classify};
+use crate::samples::kdtree::KdTree;
+use crate::solids::posed::PosedSolid;
+use crate::solids::trim_grid::{Region, classify};
 use geom_param::{EdgeId, FaceId, ParamRange, Solid};
 use glam::{DVec2, DVec3};
 
@@ -356,7 +356,7 @@ pub(crate) fn fine(
 }
 
 /// Where the patch [lo, hi] of `face` (in the trim's unwrapped (u, v)) lies with respect to
-/// the face's trim ([`crate::trim_grid::classify`]); every point of a face without trim is
+/// the face's trim ([`crate::solids::trim_grid::classify`]); every point of a face without trim is
 /// inside.
 fn patch_in_trim(posed: &PosedSolid, face: FaceId, lo: [f64; 2], hi: [f64; 2]) -> Region {
     match posed.trim(face) {

@@ -2,8 +2,8 @@
 //! to the point and every derivative, the faces' regions (rectangle or trim), and the
 //! adjacency moves the polishers need (crossing an edge, a pole).
 
-use crate::held::Held;
-use crate::trim_grid::TrimGrid;
+use crate::solids::held::Held;
+use crate::solids::trim_grid::TrimGrid;
 use geom_param::{
     Boundary, CurvePoint, DPose3, EdgeId, EdgeUse, FaceId, FeatureLocation, ParamSide, Solid,
     SurfacePoint, Trim, VertexId,
