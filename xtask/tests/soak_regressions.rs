@@ -69,9 +69,9 @@ fn both_orders(
 /// the face's normal is 0.17 rad off the pencil's normal, so the point is on the intersection
 /// curve, not a touch. Stage 3 restarted into the penetration solve from a crossing of two
 /// faces but not from an edge crossing a face, and the zero-distance point passed as a local
-/// minimum of |P_a - P_b|. Fixed in `exact_refine::newton::crossing_restart`: an edge's point
-/// is a touch only when the other face's normal, negated, lies in the arc of its two faces'
-/// normals; otherwise the solve restarts on the steeper face. Now both orders find the
+/// minimum of |P_a - P_b|. Fixed in `exact_refine::solver::pair_solve::crossing_restart`: an
+/// edge's point is a touch only when the other face's normal, negated, lies in the arc of its
+/// two faces' normals; otherwise the solve restarts on the steeper face. Now both orders find the
 /// penetration the pose was built with.
 #[test]
 fn an_edge_crossing_a_face_is_not_a_contact() {
@@ -114,8 +114,9 @@ fn an_edge_crossing_a_face_is_not_a_contact() {
 /// iteration wander 56 mm away and stop at the iteration limit (223 iterations), and the pair
 /// is reported separated: the pair solve started the goblet's point as a face point, reached a
 /// face-face penetrating pair whose witness is on the rim edge, and the face-face penetration
-/// solve had nothing to converge to. Fixed in `exact_refine::feature_switch::settle_start`: a
-/// start within coordinate rounding of a face's side is put on the side (the edge).
+/// solve had nothing to converge to. Fixed in
+/// `exact_refine::features::feature_switch::settle_start`: a start within coordinate rounding
+/// of a face's side is put on the side (the edge).
 #[test]
 fn swapping_goblet_and_jar_keeps_the_state() {
     let (pipeline, objects) = setup();
@@ -141,9 +142,9 @@ fn swapping_goblet_and_jar_keeps_the_state() {
 /// penetration of 1e-9 mm the second-order test (exactly two negative eigenvalues of the
 /// sliding directions, of size |d| x curvature ~ 1e-11) is decided by rounding. The same pair
 /// queried in the other order is also reported separated. Fixed in
-/// `exact_refine::diagnostics::diagnose`: a converged pair with |d| within its distance error
-/// estimate (here 4e-3 and 1.2e-6 mm: one relative curvature is nearly zero) is judged as at
-/// d = 0, a touch when the normals are opposed, whatever the eigenvalues' signs.
+/// `exact_refine::checks::diagnostics::diagnose`: a converged pair with |d| within its distance
+/// error estimate (here 4e-3 and 1.2e-6 mm: one relative curvature is nearly zero) is judged as
+/// at d = 0, a touch when the normals are opposed, whatever the eigenvalues' signs.
 #[test]
 fn a_touch_does_not_depend_on_the_previous_query_or_the_order() {
     let (pipeline, objects) = setup();
@@ -191,8 +192,9 @@ fn a_touch_does_not_depend_on_the_previous_query_or_the_order() {
 /// that pair is a critical pair at -1.00015e-3 mm) was reported separated. Stage 3 reached the
 /// goblet's face 8 at v = 1 - 4.4e-14 instead of the edge, where the depth's curvature jumps,
 /// and the face-face penetration solve stalled 1.7e-7 mm short of the witness (214
-/// iterations). Fixed in `exact_refine::newton::retry_on_sides`: a penetration solve that does
-/// not converge restarts once from the sides its points are within √ε x |P| of.
+/// iterations). Fixed in `exact_refine::solver::pair_solve::retry_on_sides`: a penetration
+/// solve that does not converge restarts once from the sides its points are within
+/// √ε x |P| of.
 #[test]
 fn a_penetration_witness_on_a_smooth_edge_is_found() {
     let (pipeline, objects) = setup();
@@ -216,8 +218,8 @@ fn a_penetration_witness_on_a_smooth_edge_is_found() {
 /// below, where that pair is a critical pair at -1.00015e-3 mm) was reported as a contact at
 /// -1.04e-4 mm between the bowl's edge 1 and the pencil's face 6. The seed was on the edge,
 /// and the fast Newton solve for the witness accepted the edge's critical pair, whose depth
-/// rises into the adjacent face 2. Fixed in `exact_refine::penetration::saddle_newton`: a
-/// witness on an edge or vertex from which the depth rises into a face is left to the nested
+/// rises into the adjacent face 2. Fixed in `exact_refine::solver::penetration::saddle_newton`:
+/// a witness on an edge or vertex from which the depth rises into a face is left to the nested
 /// solver, which re-enters the face.
 #[test]
 fn a_penetration_witness_next_to_an_edge_is_found() {
@@ -241,8 +243,8 @@ fn a_penetration_witness_next_to_an_edge_is_found() {
 /// face 1, hence on its edge 1, and the nested penetration solve between that edge and the
 /// goblet's edge 7 stalled (208 iterations): reported separated. Goblet first, the seed is at
 /// v = 0.5999999999999999, stays on the face, and the witness (goblet edge 7 against bowl
-/// face 1) is found. Fixed in `exact_refine::newton::retry_on_sides`: a penetration solve that
-/// does not converge on an edge restarts just inside each adjacent face.
+/// face 1) is found. Fixed in `exact_refine::solver::pair_solve::retry_on_sides`: a penetration
+/// solve that does not converge on an edge restarts just inside each adjacent face.
 #[test]
 fn a_seed_on_a_face_side_finds_the_penetration() {
     let (pipeline, objects) = setup();
@@ -266,7 +268,7 @@ fn a_seed_on_a_face_side_finds_the_penetration() {
 /// separated. The nested penetration solve projected the outer point onto the vase's face 0,
 /// whose closest point converged towards its side (v = 1 - 2.4e-15) without reaching it, and
 /// stalled there (228 iterations, the depth's curvature jumping at the side). Fixed in
-/// `exact_refine::penetration::solve_penetration`: an inner projection within √ε x |P| of a
+/// `exact_refine::solver::penetration::solve_penetration`: an inner projection within √ε x |P| of a
 /// side is put on the side (the edge), which makes the inner side the edge.
 #[test]
 fn an_inner_projection_onto_a_face_side_becomes_the_edge() {
@@ -347,8 +349,8 @@ fn crossing_rims_moved_to_delta1_flip_the_state() {
 /// v = 1.8e-4, d = 5.6e-14 mm), and the crossing restart's step (angle / curvature) left both
 /// faces, was clamped onto edges 4 and 7, and the penetration solve from there converged to a
 /// critical pair 6.07 mm deep between edges 3 and 7, no witness. Fixed in
-/// `exact_refine::newton::crossing_restart`: a restart step that would leave its face stops
-/// half-way to the side it would cross (`inside_fraction`).
+/// `exact_refine::solver::pair_solve::crossing_restart`: a restart step that would leave its
+/// face stops half-way to the side it would cross (`inside_fraction`).
 #[test]
 fn swapping_two_goblets_keeps_a_rim_penetration() {
     let (pipeline, objects) = setup();
@@ -376,8 +378,8 @@ fn swapping_two_goblets_keeps_a_rim_penetration() {
 /// solve reaches the same pair (|d| = 2.7e-10 mm, parameters within 1e-6) but stops at the
 /// iteration limit (64) unconverged, and the pair was reported separated. At an exact touch the
 /// gap is quartic in the offset along the flattest direction, so Newton converges only linearly.
-/// Fixed in `exact_refine::newton::solve`: a pair solve stopped by the iteration limit continues
-/// once from where it stopped.
+/// Fixed in `exact_refine::solver::pair_solve::solve`: a pair solve stopped by the iteration
+/// limit continues once from where it stopped.
 #[test]
 fn a_goblet_touching_a_bowl_is_a_contact_in_both_orders() {
     let (pipeline, objects) = setup();

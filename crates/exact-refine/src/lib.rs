@@ -26,27 +26,30 @@
 //! not measured through the material) needs the rest of both boundaries:
 //! [`Refiner::check_witness`] takes a [`NearestBoundary`] query per object (the pipeline passes
 //! Stage 2's meshes and the exact solids) and measures each point's distance to the other
-//! boundary (`witness_check.rs`).
+//! boundary (`checks/witness_check.rs`).
+//!
+//! Where the code is: the boundary ([`Refiner`] in `refiner.rs`, its results in
+//! `refined_contact.rs`) and [`NewtonRefiner`] (`newton_refiner.rs`) at the top; `solver/`
+//! solves one pair (seed projection, safeguarded Newton, the penetration witness, the crossing
+//! probe, and the pair solve that runs them), over `features/` (evaluation of faces, edges and
+//! vertices, and switching between them) and `linalg/` (the small symmetric Hessians);
+//! `checks/` judges a finished solve (diagnostics, the witness's nearest-boundary test).
 //!
 //! Units: millimetres and radians. Frames: results in A's object frame.
 
-mod crossing_probe;
-mod dense_solve;
-mod diagnostics;
-mod feature_eval;
-mod feature_switch;
-mod newton;
+mod checks;
+mod features;
+mod linalg;
 mod newton_refiner;
 mod options;
-mod penetration;
-mod projection;
+mod refined_contact;
 mod refiner;
-mod sym_eigen;
-mod witness_check;
+mod solver;
 
-pub use newton_refiner::NewtonRefiner;
-pub use options::NewtonOptions;
-pub use refiner::{RefineDiagnostics, RefineStatus, RefinedContact, Refiner};
-pub use witness_check::{
+pub use checks::witness_check::{
     BoundaryDistance, NearestBoundary, WitnessCheck, WitnessSide, check_witness,
 };
+pub use newton_refiner::NewtonRefiner;
+pub use options::NewtonOptions;
+pub use refined_contact::{RefineDiagnostics, RefineStatus, RefinedContact};
+pub use refiner::Refiner;

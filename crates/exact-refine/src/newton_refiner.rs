@@ -1,14 +1,16 @@
 //! [`NewtonRefiner`]: the default [`Refiner`] (seed projection, then safeguarded Newton).
 
-use crate::crossing_probe::overlap_near;
-use crate::diagnostics::{diagnose, gap_within_error};
-use crate::feature_eval::{Body, Frame, Loc};
-use crate::feature_switch::{into_faces, on_closure, onto_nearest_edge};
-use crate::newton::{Outcome, Solution, State, retry_on_sides, solve};
+use crate::checks::diagnostics::{diagnose, gap_within_error};
+use crate::features::feature_eval::{Body, Frame, Loc};
+use crate::features::feature_switch::{into_faces, on_closure, onto_nearest_edge};
 use crate::options::NewtonOptions;
-use crate::penetration::solve_penetration;
-use crate::projection::project;
-use crate::refiner::{RefineDiagnostics, RefineStatus, RefinedContact, Refiner};
+use crate::refined_contact::{RefineDiagnostics, RefineStatus, RefinedContact};
+use crate::refiner::Refiner;
+use crate::solver::crossing_probe::overlap_near;
+use crate::solver::newton::{Outcome, Solution, State};
+use crate::solver::pair_solve::{retry_on_sides, solve};
+use crate::solver::penetration::solve_penetration;
+use crate::solver::projection::project;
 use geom_param::{DPose3, DVec3, FeatureLocation, Seed, SeedPoint, Solid};
 
 /// Tolerance (sine of the angle between the connecting vector and the normal) of the seed
@@ -206,9 +208,9 @@ fn on_seed_faces(
 /// Other starts for a pair solve that did not converge from the projected seed points
 /// (`starts`), tried in turn until one converges: the seed's own locations (`seeds`), which the
 /// solve's start puts on an edge or vertex when they lie on one to rounding
-/// ([`crate::feature_switch::settle_start`]); both moved onto their nearest edges; and on each
-/// side the faces across that edge, the other side at its seed. The answer is the first that
-/// converged, else `solution`.
+/// ([`crate::features::feature_switch::settle_start`]); both moved onto their nearest edges;
+/// and on each side the faces across that edge, the other side at its seed. The answer is the
+/// first that converged, else `solution`.
 ///
 /// Why: the projections only place the start, from points of the mesh, and a seed may lie on
 /// the wrong side of an edge. A seed on two crossing rims (a vase's bottom edge pressed

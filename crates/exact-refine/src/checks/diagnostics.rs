@@ -4,11 +4,11 @@
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 
-use crate::dense_solve::by_size;
-use crate::feature_eval::Body;
-use crate::newton::{EPS, Outcome, Solution, State, by_pair_kind, is_touch};
-use crate::refiner::{RefineDiagnostics, RefineStatus};
-use crate::sym_eigen::sym_eigenvalues_lockstep;
+use crate::features::feature_eval::Body;
+use crate::linalg::dense_solve::by_size;
+use crate::linalg::sym_eigen::sym_eigenvalues_lockstep;
+use crate::refined_contact::{RefineDiagnostics, RefineStatus};
+use crate::solver::newton::{EPS, Outcome, Solution, State, by_pair_kind, is_touch};
 use geom_param::DVec3;
 
 /// Diagnostics of `solution` (a pair solve between `a` and `b`) whose unit normal from A to B
@@ -61,7 +61,7 @@ pub(crate) fn diagnose(
         Outcome::Converged if degenerate => RefineStatus::ContinuousContact,
         Outcome::Converged => RefineStatus::Converged,
         Outcome::IterationLimit => RefineStatus::IterationLimit,
-        // `Penetrating` is a hand-over inside `newton::solve` and never ends a pair solve.
+        // `Penetrating` is a hand-over inside `pair_solve::solve` and never ends a pair solve.
         Outcome::Stalled | Outcome::Penetrating => RefineStatus::Stalled,
         Outcome::SwitchLimit => RefineStatus::FeatureSwitchLimit,
     };

@@ -47,10 +47,10 @@
 //! cone of normals). What it kept and this rule gives up: a pencil pushed more than half-way
 //! through a bowl's wall is measured to the wall's far side, the nearer one.
 
-use crate::feature_eval::{Body, Frame};
-use crate::newton::{Outcome, Reentry, minimize_projection};
+use crate::features::feature_eval::{Body, Frame};
 use crate::options::NewtonOptions;
-use crate::refiner::RefinedContact;
+use crate::refined_contact::RefinedContact;
+use crate::solver::newton::{Outcome, Reentry, minimize_projection};
 use geom_param::{DPose3, DVec3, FeatureLocation, Solid};
 
 /// The nearest point of one object's boundary to a query point, as a global representation of
@@ -278,7 +278,7 @@ fn nearer_than(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::refiner::{RefineDiagnostics, RefineStatus};
+    use crate::refined_contact::{RefineDiagnostics, RefineStatus};
     use geom_param::{EdgeId, FaceId, FeatureLocation};
 
     /// The exact nearest boundary point of a ball (centre, radius) in its own frame, with a

@@ -62,7 +62,8 @@ impl Frame {
 }
 
 /// `range.normalize(t)`, keeping a value already inside the range as it is (the usual case:
-/// [`crate::feature_switch::settle`] keeps parameters there) without a remainder computation.
+/// [`crate::features::feature_switch::settle`] keeps parameters there) without a remainder
+/// computation.
 pub(crate) fn wrap(range: &ParamRange, t: f64) -> f64 {
     if range.periodic && t >= range.min && t < range.max {
         t

@@ -2,7 +2,7 @@
 //! onto the bounding edge or vertex when a face parameter reaches its side, and back into an
 //! adjacent face when the objective decreases into it.
 
-use crate::feature_eval::{Body, Frame, Loc, LocalFacePoint, side_of, wrap};
+use crate::features::feature_eval::{Body, Frame, Loc, LocalFacePoint, side_of, wrap};
 use geom_param::{
     Boundary, DVec2, DVec3, EdgeId, EdgeUse, FaceId, FeatureId, FeatureLocation, ParamRange,
     ParamSide, PoleMeridians, Solid, SurfacePoint, meridian_tangent,
@@ -169,7 +169,7 @@ fn onto_trim_boundary(
     settle(
         &Body::Solid {
             solid,
-            frame: crate::feature_eval::Frame::identity(),
+            frame: crate::features::feature_eval::Frame::identity(),
             within: None,
         },
         edge_loc,

@@ -23,10 +23,10 @@
 //! point of one boundary inside the other solid, which proves the surfaces cross there. The
 //! caller then solves for the penetration witness from it.
 
-use crate::feature_eval::{Body, Loc};
-use crate::newton::{EPS, State, TOUCH_ANGLE, slide_on_edge, slide_on_face};
+use crate::features::feature_eval::{Body, Loc};
 use crate::options::NewtonOptions;
-use crate::projection::project;
+use crate::solver::newton::{EPS, State, TOUCH_ANGLE, slide_on_edge, slide_on_face};
+use crate::solver::projection::project;
 
 /// Probe lengths, in units of the predicted lens size α / κ.
 const PROBE_MULTIPLES: [f64; 4] = [1.0, 4.0, 16.0, 64.0];

@@ -22,15 +22,17 @@
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 
-use crate::crossing_probe::overlap_near;
-use crate::dense_solve::{cholesky, cholesky_solve, lu_solve};
-use crate::feature_eval::{Body, Loc};
-use crate::feature_switch::{TakenEntries, reenter, reenter_untaken, settle, snap_to_sides};
-use crate::newton::{
+use crate::features::feature_eval::{Body, Loc};
+use crate::features::feature_switch::{
+    TakenEntries, reenter, reenter_untaken, settle, snap_to_sides,
+};
+use crate::linalg::dense_solve::{cholesky, cholesky_solve, lu_solve};
+use crate::linalg::sym_eigen::{sym_eigen, sym_eigenvalues};
+use crate::options::NewtonOptions;
+use crate::solver::crossing_probe::overlap_near;
+use crate::solver::newton::{
     EPS, Outcome, Reentry, Solution, State, minimize, minimize_projection, take_step,
 };
-use crate::options::NewtonOptions;
-use crate::sym_eigen::{sym_eigen, sym_eigenvalues};
 use geom_param::{DVec3, FeatureLocation};
 
 /// Solves for the penetration witness from (`la`, `lb`) as described in the module docs.

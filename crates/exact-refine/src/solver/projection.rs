@@ -2,15 +2,15 @@
 //! closest point on the feature, by the same safeguarded Newton with the other side fixed), as
 //! in the paper's Stage 3.
 
-use crate::feature_eval::{Body, Loc};
-use crate::newton::{Reentry, Solution, minimize_projection};
+use crate::features::feature_eval::{Body, Loc};
 use crate::options::NewtonOptions;
+use crate::solver::newton::{Reentry, Solution, minimize_projection};
 use geom_param::DVec3;
 
 /// The closest point to `target` (A's frame) on `body`'s feature near `start`, switching feature
 /// where the projection leaves a face but never back into one (from an edge seed next to a face,
 /// that would only be undone by the pair solve). `base_scale` as in
-/// [`crate::newton::solve`].
+/// [`crate::solver::pair_solve::solve`].
 pub(crate) fn project(
     body: &Body,
     start: Loc,
