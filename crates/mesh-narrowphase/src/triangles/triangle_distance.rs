@@ -163,7 +163,10 @@ pub fn closest_between_triangles(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> TrianglePa
     }
     const EDGES: [(usize, usize); 3] = [(0, 1), (1, 2), (2, 0)];
     let first = closest_on_triangle(t1[0], t2);
-    let mut best = (t1[0].distance_squared(first.point), Case::CornerOfFirst(0, first));
+    let mut best = (
+        t1[0].distance_squared(first.point),
+        Case::CornerOfFirst(0, first),
+    );
     let mut consider = |squared: f64, case: Case| {
         if squared < best.0 {
             best = (squared, case);
@@ -182,7 +185,10 @@ pub fn closest_between_triangles(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> TrianglePa
             let (s, t) = segment_parameters(t1[i1], t1[j1], t2[i2], t2[j2]);
             let pa = t1[i1] + (t1[j1] - t1[i1]) * s;
             let pb = t2[i2] + (t2[j2] - t2[i2]) * t;
-            consider(pa.distance_squared(pb), Case::Edges((i1, j1), (i2, j2), s, t));
+            consider(
+                pa.distance_squared(pb),
+                Case::Edges((i1, j1), (i2, j2), s, t),
+            );
         }
     }
     let corner = |t: &[DVec3; 3], i: usize| {
