@@ -1551,3 +1551,53 @@ fn a_smooth_edge_end_that_descends_is_no_contact() {
         assert!(w.dot(-nb) > 1.0 - 1e-12, "{w:?} {nb:?}");
     }
 }
+
+/// pencil-bowl 17590256838382410736 of `soak 4000 --general --seed 13222` (a swap failure):
+/// the pencil's ridge (edge 4, between its body and its taper) 1.8e-3 mm into the bowl's rim,
+/// and beside it the taper (face 6) 0.098 mm from the rim, a separated minimum 0.07 mm from the
+/// penetration. Queried the other way round, the taper's seed stepped onto the ridge and
+/// re-entered the other face, the steeper descent, reaching the penetration the other seed
+/// also found: the contact was reported one way only. Now re-entry goes back into the face the
+/// solve came from: both orders report the penetration and the contact, at the oracle's
+/// minimum.
+#[test]
+fn a_seed_that_steps_onto_a_ridge_goes_back_into_its_face() {
+    let (pipeline, objects) = setup();
+    let (pencil, bowl) = (&objects["pencil"], &objects["bowl"]);
+    let pose_b = pose(
+        [27.46147222001231, -11.749336744088648, -6.422334497022322],
+        [
+            0.3485397538132106,
+            -0.2810451469266387,
+            0.2740509113395404,
+            -0.851134397962377,
+        ],
+    );
+    let (ab, ba) = both_orders(&pipeline, &objects, "pencil", "bowl", &pose_b);
+    let oracle = xtask::soak::oracle_check::oracle_report(
+        &pencil.model.solid,
+        &bowl.model.solid,
+        &pose_b,
+        pipeline.options(),
+    )
+    .expect("oracle runs");
+    let minimum = oracle
+        .contacts
+        .iter()
+        .map(|c| c.distance)
+        .find(|d| *d > 0.0)
+        .expect("the oracle's separated minimum");
+    for report in [&ab, &ba] {
+        assert_eq!(report.state, PairState::Penetration, "{report:?}");
+        let separated: Vec<f64> = report
+            .contacts
+            .iter()
+            .map(|c| c.distance)
+            .filter(|d| *d > 0.0)
+            .collect();
+        assert!(
+            separated.len() == 1 && (separated[0] - minimum).abs() < 1e-9,
+            "{separated:?} against the oracle's {minimum}"
+        );
+    }
+}

@@ -394,7 +394,7 @@ impl TakenEntries {
 /// From a vertex a face collapses into, its directions are its [`geom_param::PoleMeridians`]:
 /// the best one is only a start, Newton then turns the running parameter to the optimum.
 pub(crate) fn reenter(body: &Body, loc: &Loc, pull: DVec3, threshold: f64) -> Loc {
-    reenter_untaken(body, loc, pull, threshold, &TakenEntries::default())
+    reenter_untaken(body, loc, pull, threshold, &TakenEntries::default(), None)
 }
 
 /// Whether a meridian (`tangent`) and the one half a turn round (`opposite`) leave their
@@ -481,13 +481,23 @@ fn apex_meridian_between(
 /// As [`reenter`], preferring a way in that `taken` does not hold from this location: the
 /// best of those when one exceeds `threshold`, else the best of all (a solve that has only
 /// taken ways in left keeps cycling to its switch limit rather than stopping at a point that
-/// is not stationary).
+/// is not stationary). Among the untaken ways in, the face `came_from` (the face the solve
+/// stepped off onto this edge or vertex) goes first whenever f decreases into it at all.
+///
+/// Why the face it came from: where f decreases into both faces of an edge, each leads to a
+/// critical pair of its own, and the seed stands for the one on its face (Stage 2 seeds the
+/// other face's separately). A pencil's taper 0.098 mm from a bowl's rim beside its ridge
+/// 1.8e-3 mm into the rim: the taper's seed stepped onto the ridge and went on into the other
+/// face, the steeper way, to the penetration, which the other seed found too; queried the
+/// other way round, its first step stayed on the taper, so the contact was found one way only
+/// (pencil-bowl 17590256838382410736 of `soak 4000 --general --seed 13222`).
 pub(crate) fn reenter_untaken(
     body: &Body,
     loc: &Loc,
     pull: DVec3,
     threshold: f64,
     taken: &TakenEntries,
+    came_from: Option<FaceId>,
 ) -> Loc {
     let (
         Body::Solid {
@@ -503,6 +513,7 @@ pub(crate) fn reenter_untaken(
     let from = location.feature();
     let mut best: Option<(f64, FeatureLocation)> = None;
     let mut best_untaken: Option<(f64, FeatureLocation)> = None;
+    let mut back: Option<(f64, FeatureLocation)> = None;
     let mut offer = |tangent: DVec3, loc: FeatureLocation| {
         if within.is_some_and(|f| !on_closure(solid, &loc, f)) {
             return;
@@ -514,8 +525,15 @@ pub(crate) fn reenter_untaken(
         if best.is_none_or(|(s, _)| score > s) {
             best = Some((score, loc));
         }
-        if !taken.taken(from, loc.feature()) && best_untaken.is_none_or(|(s, _)| score > s) {
+        if taken.taken(from, loc.feature()) {
+            return;
+        }
+        if best_untaken.is_none_or(|(s, _)| score > s) {
             best_untaken = Some((score, loc));
+        }
+        let into_origin = matches!(loc, FeatureLocation::Face { id, .. } if Some(id) == came_from);
+        if into_origin && back.is_none_or(|(s, _)| score > s) {
+            back = Some((score, loc));
         }
     };
     // The direction into a face from an edge use at t (in the solid's frame) and the face
@@ -602,7 +620,7 @@ pub(crate) fn reenter_untaken(
         }
         FeatureLocation::Face { .. } => {}
     }
-    best_untaken.or(best).map(|(_, l)| l)
+    back.or(best_untaken).or(best).map(|(_, l)| l)
 }
 
 /// Whether `location` is on face `face` or on its boundary (an edge with a use on it, a vertex

@@ -31,7 +31,7 @@ use crate::linalg::dense_solve::{
 };
 use crate::linalg::sym_eigen::{SymEigen, sym_eigen};
 use crate::options::NewtonOptions;
-use geom_param::{DVec3, FeatureLocation, ParamRange};
+use geom_param::{DVec3, FaceId, FeatureLocation, ParamRange};
 use std::f64::consts::PI;
 
 /// Calls `f::<NA, NB>(args)` for the pair kind (`na`, `nb`) parameters on A and B (each 0, 1
@@ -670,6 +670,8 @@ pub(crate) fn minimize_known(
     let (max_radius, mut radius) = cur.trust_radii();
     let mut switches = 0;
     let mut taken = [TakenEntries::default(); 2];
+    // The face each side last stepped off onto an edge or vertex: re-entry prefers it.
+    let mut came_from: [Option<FaceId>; 2] = [None, None];
     let end = |state, iterations, outcome| Solution {
         state,
         iterations,
@@ -689,11 +691,13 @@ pub(crate) fn minimize_known(
             // From an edge or vertex, continue into an adjacent face if f decreases into it.
             let threshold = 64.0 * EPS * cur.scale;
             let entry_a = match reentry {
-                Reentry::Allowed => reenter_untaken(a, &cur.la, -cur.d, threshold, &taken[0]),
+                Reentry::Allowed => {
+                    reenter_untaken(a, &cur.la, -cur.d, threshold, &taken[0], came_from[0])
+                }
                 Reentry::Never => None,
             };
             let entry_b = if entry_a.is_none() && reentry == Reentry::Allowed {
-                reenter_untaken(b, &cur.lb, cur.d, threshold, &taken[1])
+                reenter_untaken(b, &cur.lb, cur.d, threshold, &taken[1], came_from[1])
             } else {
                 None
             };
@@ -787,6 +791,16 @@ pub(crate) fn minimize_known(
                 radius = 0.25 * max_radius;
             } else if clipped >= 0.9 * radius {
                 radius = (2.0 * radius).min(max_radius);
+            }
+            for (origin, (from, to)) in came_from
+                .iter_mut()
+                .zip([(cur.la, trial.la), (cur.lb, trial.lb)])
+            {
+                if let (Some(FeatureLocation::Face { id, .. }), Some(to)) = (from, to)
+                    && !matches!(to, FeatureLocation::Face { .. })
+                {
+                    *origin = Some(id);
+                }
             }
             cur = trial;
             distance_ok = true;

@@ -158,7 +158,8 @@ pub(crate) fn solve_penetration_from(
             };
             let pull = inner_normal.map_or(DVec3::ZERO, |n| -n);
             let taken_here = &mut taken[usize::from(!outer_is_a)];
-            let Some(entry) = reenter_untaken(outer, &outer_loc, pull, 64.0 * EPS, taken_here)
+            let Some(entry) =
+                reenter_untaken(outer, &outer_loc, pull, 64.0 * EPS, taken_here, None)
             else {
                 return end(cur, steps + iteration, Outcome::Converged);
             };
