@@ -1553,13 +1553,12 @@ fn a_smooth_edge_end_that_descends_is_no_contact() {
 }
 
 /// pencil-bowl 17590256838382410736 of `soak 4000 --general --seed 13222` (a swap failure):
-/// the pencil's ridge (edge 4, between its body and its taper) 1.8e-3 mm into the bowl's rim,
-/// and beside it the taper (face 6) 0.098 mm from the rim, a separated minimum 0.07 mm from the
-/// penetration. Queried the other way round, the taper's seed stepped onto the ridge and
-/// re-entered the other face, the steeper descent, reaching the penetration the other seed
-/// also found: the contact was reported one way only. Now re-entry goes back into the face the
-/// solve came from: both orders report the penetration and the contact, at the oracle's
-/// minimum.
+/// the pencil's edge 4 1.8e-3 mm into the bowl's rim, and beside it its face 6 0.098 mm from
+/// the rim, a separated minimum 0.07 mm from the penetration. Queried with the bowl as A, the
+/// face-6 seed stepped onto edge 5 (between faces 6 and 5) and re-entered face 5, the steeper
+/// descent, reaching the penetration the other seed also found: the contact was reported one
+/// way only. Now re-entry goes back into the face the solve came from: both orders report the
+/// penetration and the contact, at the oracle's minimum.
 #[test]
 fn a_seed_that_steps_onto_a_ridge_goes_back_into_its_face() {
     let (pipeline, objects) = setup();
