@@ -1,6 +1,6 @@
 //! Failures found by `cargo xtask soak`, each kept with its literal pose (A at the identity,
 //! B at the pose given, default `ContactOptions`) and a comment on what failed. Every one
-//! passes: none is `#[ignore]`d, and a pose that still failed would be kept as a test asserting
+//! passes: none is skipped, and a pose that still failed would be kept as a test asserting
 //! today's behaviour with a note of what is wrong; see docs/ROBUSTNESS.md ("Soak").
 
 use bvh_hybrid::HybridBvh;

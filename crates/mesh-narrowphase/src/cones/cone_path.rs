@@ -11,7 +11,6 @@ use crate::mesh_phase::{MeshOutput, MeshVerdict};
 use crate::pair_key::PairKey;
 use crate::query_side::Side;
 use crate::triangles::mesh_intersections::TriangleBuffers;
-use crate::triangles::mesh_intersections::{intersect_candidates, report_mesh_intersections};
 use crate::triangles::triangle_distance::{
     TrianglePoint, closest_between_triangles, closest_on_triangle,
 };
@@ -141,25 +140,7 @@ pub(crate) fn cone_path(
     );
     scratch.candidates.sort_unstable();
     scratch.candidates.dedup();
-    let (ma, mb) = (side_a.mesh, side_b.mesh);
-    intersect_candidates(
-        (&ma.positions, &ma.triangles),
-        (&mb.positions, &mb.triangles),
-        pose_ab,
-        &scratch.candidates,
-        &mut scratch.segments,
-        &mut out.stats,
-    );
-    report_mesh_intersections(
-        side_a,
-        side_b,
-        pose_ab,
-        &scratch.segments,
-        &mut scratch.regions,
-        &mut scratch.region_of,
-        out,
-    );
-    let meshes_intersect = !out.penetrating_pairs.is_empty();
+    let meshes_intersect = scratch.report_intersecting((side_a, side_b), pose_ab, out);
 
     // 2. Seed candidates.
     let ConeScratch {

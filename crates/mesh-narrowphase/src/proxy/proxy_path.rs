@@ -6,8 +6,7 @@
 use crate::mesh_phase::{MeshOutput, MeshVerdict, RegionProbes};
 use crate::query_side::Side;
 use crate::triangles::collision_regions::{group_regions, region_centres, region_extremes};
-use crate::triangles::mesh_intersections::TriangleBuffers;
-use crate::triangles::mesh_intersections::{intersect_candidates, report_mesh_intersections};
+use crate::triangles::mesh_intersections::{TriangleBuffers, intersect_candidates};
 use geom_param::{ComponentKind, DPose3, Seed};
 use glam::DVec3;
 
@@ -47,27 +46,10 @@ pub(crate) fn triangle_path(
     // 1. The meshes themselves.
     scratch.candidates.clear();
     bvh_a.overlapping_pairs(bvh_b, pose_ab, (0.0, 0.0), &mut scratch.candidates);
-    intersect_candidates(
-        (&ma.positions, &ma.triangles),
-        (&mb.positions, &mb.triangles),
-        pose_ab,
-        &scratch.candidates,
-        &mut scratch.segments,
-        &mut out.stats,
-    );
     // One seed per region, for the caller to confirm the penetration on the exact surfaces.
     // Then go on to the proxy pass: other contacts of the pair still need their seeds when
     // Stage 3 finds the overlap to be within the chordal errors.
-    report_mesh_intersections(
-        side_a,
-        side_b,
-        pose_ab,
-        &scratch.segments,
-        &mut scratch.regions,
-        &mut scratch.region_of,
-        out,
-    );
-    let meshes_intersect = !out.penetrating_pairs.is_empty();
+    let meshes_intersect = scratch.report_intersecting((side_a, side_b), pose_ab, out);
 
     // 2. The proxy of one side against the other's mesh: the concave side, A when both or
     // neither are.

@@ -30,6 +30,38 @@ pub(crate) struct TriangleBuffers {
     pub(crate) extremes: Vec<(f64, [DVec3; 2])>,
 }
 
+impl TriangleBuffers {
+    /// The exact test of every pair in `candidates` (A's and B's triangles of the two sides'
+    /// meshes, B posed by `pose_ab`), and what both triangle paths report of the pairs that
+    /// intersect ([`report_mesh_intersections`]). Returns whether any did.
+    pub(crate) fn report_intersecting(
+        &mut self,
+        (side_a, side_b): (&Side<'_>, &Side<'_>),
+        pose_ab: &DPose3,
+        out: &mut MeshOutput,
+    ) -> bool {
+        let (ma, mb) = (side_a.mesh, side_b.mesh);
+        intersect_candidates(
+            (&ma.positions, &ma.triangles),
+            (&mb.positions, &mb.triangles),
+            pose_ab,
+            &self.candidates,
+            &mut self.segments,
+            &mut out.stats,
+        );
+        report_mesh_intersections(
+            side_a,
+            side_b,
+            pose_ab,
+            &self.segments,
+            &mut self.regions,
+            &mut self.region_of,
+            out,
+        );
+        !out.penetrating_pairs.is_empty()
+    }
+}
+
 /// Runs the exact triangle test on every candidate pair (B's triangles moved into A's frame)
 /// and collects the intersection segments; a coplanar overlap contributes its polygon's edges.
 pub(crate) fn intersect_candidates(
