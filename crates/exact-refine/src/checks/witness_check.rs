@@ -19,7 +19,13 @@
 //! or at vertices, the faces that hold p_y are left out: p_x lies in p_y's cone of normals
 //! (Stage 3's critical-pair condition), and the flank beside an edge passes nearer to a point
 //! inside the wedge than the edge does (two sharp rims crossing 1e-3 mm deep: the depth is the
-//! edges' distance, the translation that separates them). A point on a face inside the other
+//! edges' distance, the translation that separates them). Two crossing wedges hold each
+//! other's points, so there the rule must hold both ways: each point inside the other solid,
+//! with no boundary point but the other's flanks nearer. A tube's inner rim point 0.3 mm
+//! inside a loft's side face, 15.4 mm from the loft's end ellipse, is no witness: the side
+//! face, which holds the ellipse, is left out, but the ellipse's point has the tube's outer
+//! wall nearer than the rim (`contact-pipeline`'s fast-trajectory coherence test). A point on
+//! a face inside the other
 //! solid's wedge is measured to the flanks: a goblet rim's corner inside the other goblet's
 //! rim, against its outer wall 0.76 mm away, is no witness, the rim's top being nearer. The
 //! other direction need not hold, and often does not: a pencil's apex
@@ -124,8 +130,9 @@ pub enum WitnessSide {
 pub enum WitnessCheck {
     /// Certified (see the module docs): one point lies inside the other solid, and no point of
     /// that solid's boundary (but, between two edges or vertices, the flanks of the other
-    /// point) is nearer to it than the depth less τ = 1e-9 of the coordinates. Also for a pair that does not
-    /// penetrate (nothing to check).
+    /// point) is nearer to it than the depth less τ = 1e-9 of the coordinates; between two
+    /// edges or vertices, both ways. Also for a pair that does not penetrate (nothing to
+    /// check).
     Certified,
     /// Not a witness: neither side holds, the pair is measured through the material. `side`
     /// is the first side that found a nearer boundary point (A's point against B's boundary
@@ -176,23 +183,31 @@ pub fn check_witness(
         ),
         (near_a, pb, pa, witness.location_a, WitnessSide::A),
     ];
-    // Flanks are left out only between two sharp points (see the module docs).
+    // Flanks are left out only between two sharp points, and then both sides must hold (see
+    // the module docs).
     let on_face = |l: &FeatureLocation| matches!(l, FeatureLocation::Face { .. });
     let sharp = !on_face(&witness.location_a) && !on_face(&witness.location_b);
     let mut undecided = false;
     let mut nearer: Option<(WitnessSide, f64)> = None;
-    for (near, point, own_point, own, side) in sides {
+    // Per side: whether its point lies inside the other solid with no boundary point nearer.
+    let mut holds = [false; 2];
+    for (k, (near, point, own_point, own, side)) in sides.into_iter().enumerate() {
         match nearer_than(near, point, limit, sharp.then_some(own)) {
             Nearer::At(at) => {
                 nearer.get_or_insert((side, at));
             }
             Nearer::Unknown => undecided = true,
             Nearer::No => match near.outward(own_point, own) {
-                Some(n) if (point - own_point).dot(n) < 0.0 => return WitnessCheck::Certified,
-                Some(_) => {}
+                Some(n) => holds[k] = (point - own_point).dot(n) < 0.0,
                 None => undecided = true,
             },
         }
+        if holds[k] && !sharp {
+            return WitnessCheck::Certified;
+        }
+    }
+    if holds == [true, true] {
+        return WitnessCheck::Certified;
     }
     if undecided {
         return WitnessCheck::Undecided;
@@ -588,13 +603,21 @@ mod tests {
     /// nearer, as the bound alone shows. 0.05 mm deep there: only the exact distance shows the
     /// cap nearer. To the outer top edge, 0.05 mm along its bisector: the cylinder and the cap
     /// (the faces that hold the edge) are nearer, 0.035 mm, and count against a point on a
-    /// face; against a point at a vertex they are left out; from 2 mm inside the wall the inner
-    /// cylinder, which does not hold the edge, is nearer either way.
+    /// face; against a point at a vertex they are left out, and the pair holds when B's point
+    /// lies inside A with A's point its nearest (two sharp points crossing), not when A leaves
+    /// it outside; from 2 mm
+    /// inside the wall the inner cylinder, which does not hold the edge, is nearer either way.
     #[test]
     fn a_depth_the_bound_cannot_settle_is_measured_on_the_exact_surface() {
-        let check = |pa: DVec3, pb: DVec3, on: Option<[FeatureLocation; 2]>, exact: bool| {
+        // A's ball leaves B's point outside, or, `crossing`, holds it (its centre beyond it).
+        let check_with = |pa: DVec3,
+                          pb: DVec3,
+                          on: Option<[FeatureLocation; 2]>,
+                          exact: bool,
+                          crossing: bool| {
+            let away = if crossing { -100.0 } else { 100.0 };
             let a = Ball {
-                centre: pa - (pb - pa).normalize() * 100.0,
+                centre: pa - (pb - pa).normalize() * away,
                 radius: 100.0,
                 error: 0.0,
             };
@@ -603,6 +626,9 @@ mod tests {
                 (w.location_a, w.location_b) = (a_on, b_on);
             }
             check_witness(&DPose3::IDENTITY, &w, &a, &TubeWall::new(exact))
+        };
+        let check = |pa: DVec3, pb: DVec3, on: Option<[FeatureLocation; 2]>, exact: bool| {
+            check_with(pa, pb, on, exact, false)
         };
         let to_cylinder = |r: f64, z: f64, exact: bool| {
             check(DVec3::new(r, 0.0, z), DVec3::new(10.0, 0.0, z), None, exact)
@@ -642,8 +668,15 @@ mod tests {
             other => panic!("{other:?}"),
         }
         assert_eq!(
-            check(inside, corner, Some([vertex, edge]), true),
+            check_with(inside, corner, Some([vertex, edge]), true, true),
             WitnessCheck::Certified
+        );
+        assert_eq!(
+            check(inside, corner, Some([vertex, edge]), true),
+            WitnessCheck::ThroughMaterial {
+                side: WitnessSide::B,
+                at: inside.distance(corner),
+            }
         );
         for a_on in [face, vertex] {
             match check(DVec3::new(8.2, 0.0, 19.0), corner, Some([a_on, edge]), true) {
