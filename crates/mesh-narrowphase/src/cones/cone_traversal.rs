@@ -31,7 +31,8 @@ pub struct StopPair {
     /// The normal cones allow a critical pair here.
     pub critical: bool,
     /// The two nodes' mesh pieces may intersect: their volumes shrunk by their
-    /// [`PatchNode::mesh_inset`]s overlap.
+    /// [`PatchNode::mesh_inset`]s overlap, and for two leaves, no separating axis of their
+    /// triangles ([`separating_gap`]) sets them apart.
     pub meshes_may_meet: bool,
 }
 
@@ -84,6 +85,10 @@ pub struct KeptLeaf {
     /// The sum of the two nodes' [`PatchNode::mesh_inset`]s: the meshes may meet while the
     /// bound less the insets is not positive.
     pub inset: f64,
+    /// The separating gap (mm) of the two triangles ([`separating_gap`], less its rounding
+    /// allowance) when the pair was tested, less the motion of B since the front's reference
+    /// pose then, as for `lower`: the triangles stay apart while it less `moved` is positive.
+    pub gap: f64,
 }
 
 impl FrontEntry {
@@ -98,7 +103,7 @@ impl FrontEntry {
                 b: self.b,
                 lower,
                 critical: k.critical,
-                meshes_may_meet: lower + k.inset <= 0.0,
+                meshes_may_meet: lower + k.inset <= 0.0 && k.gap - moved <= 0.0,
             }
         })
     }
@@ -539,12 +544,15 @@ pub fn traverse(
                 // The triangles' separating gap: without a critical pair the leaves matter only
                 // if their triangles intersect, so that triangles apart are dropped; with one,
                 // the pair is dropped when the gap less the pieces' deviations from their exact
-                // patches exceeds the reach (measured only where the volumes are apart:
-                // overlapping volumes are close, their triangles rarely beyond the reach).
-                let gap = if critical && lower <= 0.0 {
-                    None
-                } else {
-                    leaf_triangles_gap((tree_a, a), (tree_b, b), frame)
+                // patches exceeds the reach. Measured where the volumes overlap too: a piece's
+                // ball spans its triangle, far wider than the gaps of a conformal contact (a
+                // pencil in a tube: three in four such leaf pairs had triangles beyond the
+                // reach), and triangles apart need no exact intersection test.
+                let gap = leaf_triangles_gap((tree_a, a), (tree_b, b), frame);
+                let meshes_may_meet = meshes_may_meet && gap.is_none_or(|g| g <= 0.0);
+                let stop = StopPair {
+                    meshes_may_meet,
+                    ..stop
                 };
                 if critical {
                     // The exact patches lie within their pieces' deviations of the triangles.
@@ -585,6 +593,7 @@ pub fn traverse(
                             critical,
                             lower: lower - moved,
                             inset,
+                            gap: gap.unwrap_or(f64::NEG_INFINITY) - moved,
                         }),
                         ..stopped(carry - moved)
                     }
