@@ -517,8 +517,13 @@ impl Trim {
         let entry = &self.loops[near.loop_index].entries[near.index];
         let range = entry.pcurve.domain();
         let mut t = near.t;
-        for _ in 0..POLISH_STEPS {
-            let c = entry.pcurve.eval(t);
+        // Each evaluation is used once (a p-curve read from a file is a mapped rational
+        // spline): the first is the point at the polyline's parameter, and the last, when
+        // Newton stopped there, the polished point.
+        let mut c = entry.pcurve.eval(t);
+        let start = c.point;
+        let mut evaluated_at = t;
+        for step in 0..POLISH_STEPS {
             let r = c.point - uv;
             let g = r.dot(c.d1);
             let h = c.d1.length_squared() + r.dot(c.d2);
@@ -531,14 +536,21 @@ impl Trim {
                 break;
             }
             t = next;
+            if step + 1 < POLISH_STEPS {
+                c = entry.pcurve.eval(t);
+                evaluated_at = t;
+            }
         }
         // The answer is a point of the exact p-curve: the polished one, unless Newton ended
         // farther than the exact point at the polyline's parameter. (Not the polyline's point
         // itself: a query on a chord is up to the flatness from the curve, and that point
         // passed for the boundary; a bracket's cap took a point 2e-3 mm inside its fillet
         // arc for a point of the face.)
-        let polished = entry.pcurve.eval(t).point;
-        let start = entry.pcurve.eval(near.t).point;
+        let polished = if evaluated_at == t {
+            c.point
+        } else {
+            entry.pcurve.eval(t).point
+        };
         if polished.distance(uv) <= start.distance(uv) {
             near.t = t;
             near.point = polished;
