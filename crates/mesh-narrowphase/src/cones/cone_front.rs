@@ -9,13 +9,15 @@
 //! ([`crate::cones::cone_traversal::KeptLeaf`]): those with a possible critical pair for a motion of
 //! [`crate::cones::cone_traversal::LEAF_CARRY`] of their balls (keeping one is always sound: it only
 //! adds a candidate), those whose meshes may meet for as long as their cones rule out a
-//! critical pair. So a query only re-tests the front's other pairs (certified, leaves whose
-//! cones would not hold) and those whose margin the motion since the front's reference pose
-//! has used up, and descends from them as a fresh traversal would. Whatever the pose, the
+//! critical pair; certified pairs are kept likewise while the query's rotation still
+//! certifies them (the certificate depends on the nodes' relative orientation only). So a
+//! query only re-tests the front's other pairs (leaves whose cones would not hold) and those
+//! whose margin the motion since the front's reference pose has used up, and descends from
+//! them as a fresh traversal would. Whatever the pose, the
 //! answer is the one the traversal from the root gives, up to which of equally valid stopping
 //! pairs it reaches and the kept leaf pairs that a fresh traversal would have dropped since.
 
-use crate::cones::cone_traversal::{FrontEntry, TraversalOutput};
+use crate::cones::cone_traversal::{FrontEntry, PairFrame, TraversalOutput, certifiable};
 use crate::cones::patch_tree::PatchTree;
 use geom_param::DPose3;
 
@@ -117,9 +119,26 @@ impl ConeFront {
             if (used_up as f64) <= RETEST_FRACTION * (used_up + carried) as f64 {
                 // Kept leaf pairs go to the leaf pairs while their slack lasts; the others are
                 // tested again.
-                self.leaves.retain(|e| match e.kept_leaf(moved) {
-                    Some(stop) if e.slack > moved => {
-                        out.leaves.push(stop);
+                let frame = PairFrame::new(pose_ab);
+                let still_certified = |e: &FrontEntry| {
+                    let nodes = tree_a
+                        .nodes
+                        .get(e.a as usize)
+                        .zip(tree_b.nodes.get(e.b as usize));
+                    nodes.is_some_and(|(a, b)| {
+                        certifiable(a, b, frame.rotation * b.cone.axis, &frame.rotation)
+                    })
+                };
+                self.leaves.retain(|e| match (e.kept, e.kept_leaf(moved)) {
+                    (Some(k), Some(stop)) if e.slack > moved => {
+                        if !k.certified {
+                            out.leaves.push(stop);
+                        } else if still_certified(e) {
+                            out.certified.push(stop);
+                        } else {
+                            out.queue(e.a, e.b);
+                            return false;
+                        }
                         true
                     }
                     _ => {

@@ -48,17 +48,17 @@ pub struct FrontEntry {
     /// (mm), less the motion of B since the front's reference pose, so that the pair stays
     /// dropped for any pose that moves no point of B's component by more than this from the
     /// reference pose; for a pair dropped by its cones, the motion it survives
-    /// ([`CONE_CARRY`]) less that motion; for a kept leaf pair ([`KeptLeaf`]), the motion it
-    /// is kept for less that motion. Negative for every other stop (certified, a leaf pair
-    /// whose cones would not hold, a cone drop too close to the limit), which the next query
-    /// tests again.
+    /// ([`CONE_CARRY`]) less that motion; for a kept leaf or certified pair ([`KeptLeaf`]),
+    /// the motion it is kept for less that motion. Negative for every other stop (a leaf pair
+    /// whose cones would not hold, a cone drop too close to the limit, a pair kept for less
+    /// than the motion so far), which the next query tests again.
     pub slack: f64,
     /// Dropped by its cones: when the motion uses its slack up, the pair is tested again like
     /// every pair with a negative slack (it does not count towards rebuilding the front, see
     /// [`crate::cones::cone_front`]).
     pub by_cones: bool,
-    /// A leaf pair kept as a leaf pair, without being tested again, while its slack lasts
-    /// ([`KeptLeaf`]).
+    /// A leaf pair kept as a leaf pair, or a certified pair as a certified pair, without being
+    /// tested again, while its slack lasts ([`KeptLeaf`]).
     pub kept: Option<KeptLeaf>,
 }
 
@@ -74,6 +74,9 @@ pub struct FrontEntry {
 ///   a leaf pair that a fresh test would drop has triangles apart, which those tests find):
 ///   kept for a motion of [`CONE_CARRY`] of its smaller ball radius when its cones rule out a
 ///   critical pair for any motion that long, as for a pair dropped by its cones.
+/// - A certified pair ([`KeptLeaf::certified`]), kept for a motion of [`LEAF_CARRY`] of its
+///   smaller ball radius while it is still certifiable at the query's rotation: a resting
+///   pencil in a bowl has 45 of them, which every query tested again before.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KeptLeaf {
     /// Whether the cones allowed a critical pair.
@@ -88,7 +91,13 @@ pub struct KeptLeaf {
     /// The separating gap (mm) of the two triangles ([`separating_gap`], less its rounding
     /// allowance) when the pair was tested, less the motion of B since the front's reference
     /// pose then, as for `lower`: the triangles stay apart while it less `moved` is positive.
+    /// −∞ for a certified pair.
     pub gap: f64,
+    /// A certified pair ([`certifiable`]) kept as one, while its slack lasts and while it is
+    /// still certifiable at the query's rotation (which the front tests again: the certificate
+    /// depends on the two nodes' relative orientation only, and keeping a pair that a fresh
+    /// test would drop only adds a candidate, as for a leaf pair), not a leaf pair.
+    pub certified: bool,
 }
 
 impl FrontEntry {
@@ -536,7 +545,21 @@ pub fn traverse(
         };
         if critical && certifiable(a, b, axis_b, &frame.rotation) {
             out.certified.push(stop);
-            out.front.push(stopped(-1.0));
+            let carry = LEAF_CARRY * a.radius.min(b.radius);
+            out.front.push(if carry > moved {
+                FrontEntry {
+                    kept: Some(KeptLeaf {
+                        critical,
+                        lower: lower - moved,
+                        inset,
+                        gap: f64::NEG_INFINITY,
+                        certified: true,
+                    }),
+                    ..stopped(carry - moved)
+                }
+            } else {
+                stopped(-1.0)
+            });
             continue;
         }
         match (a.is_leaf(), b.is_leaf()) {
@@ -594,6 +617,7 @@ pub fn traverse(
                             lower: lower - moved,
                             inset,
                             gap: gap.unwrap_or(f64::NEG_INFINITY) - moved,
+                            certified: false,
                         }),
                         ..stopped(carry - moved)
                     }
