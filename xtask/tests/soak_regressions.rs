@@ -1600,3 +1600,35 @@ fn a_seed_that_steps_onto_a_ridge_goes_back_into_its_face() {
         );
     }
 }
+
+/// `soak 2000 --general --seed 13228`, bracket-tube 6361718881371836117 (built as an overlap
+/// of -7.740e-4 mm, inside the band: a contact): the tube's outer bottom circle (edge 0) lies
+/// 7.74e-4 mm into the bracket's face 9. With Newton steps cut where they leave a trimmed
+/// face (f23380e, brought back in 8ee8031), the one seed took 186 steps to that minimum with
+/// the bracket as A, and with the tube as A never reached it: "separated" (a swap failure,
+/// and the flip property's moves to delta1 failed likewise). Without the cut both orders find
+/// it, which this test asserts; the cut was reverted a second time.
+#[test]
+fn a_rim_inside_a_bracket_face_is_found_in_both_orders() {
+    let (pipeline, objects) = setup();
+    let pose_b = pose(
+        [-7.9458149578409625, 0.45785328900303457, 32.702739773818045],
+        [
+            -0.037101560439436486,
+            -0.1473611454023073,
+            -0.19547710495903953,
+            -0.9688636996376279,
+        ],
+    );
+    let (ab, ba) = both_orders(&pipeline, &objects, "bracket", "tube", &pose_b);
+    for report in [&ab, &ba] {
+        assert_eq!(report.state, PairState::Contact, "{report:?}");
+        assert!(
+            report
+                .contacts
+                .iter()
+                .any(|c| (c.distance + 7.739_525_435_68e-4).abs() < 1e-9),
+            "{report:?}"
+        );
+    }
+}

@@ -121,34 +121,6 @@ fn settle_trimmed(
     onto_trim_boundary(solid, id, trim, p)
 }
 
-/// The fraction of the parameter step `delta` (du, dv) from the face location `loc` at which
-/// the straight path first leaves its trimmed face ([`geom_param::Trim::first_exit`]); `None`
-/// for another feature, an untrimmed face or a path that stays on the face.
-pub(crate) fn trim_exit(body: &Body, loc: &Loc, delta: [f64; 2]) -> Option<f64> {
-    let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, loc) else {
-        return None;
-    };
-    let trim = solid.face(*id).trim.as_ref()?;
-    trim.first_exit(DVec2::new(*u, *v), DVec2::new(delta[0], delta[1]))
-}
-
-/// The face location `loc` on a trimmed face moved onto the nearest point of the trim's
-/// boundary: the edge there (or, at the edge's end, its vertex). Any other location is
-/// [`settle`]d as it is.
-pub(crate) fn settle_onto_trim(body: &Body, loc: Loc) -> Loc {
-    if let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, loc)
-        && let Some(trim) = &solid.face(id).trim
-    {
-        return Some(onto_trim_boundary(
-            solid,
-            id,
-            trim,
-            trim.unwrap(DVec2::new(u, v)),
-        ));
-    }
-    settle(body, loc)
-}
-
 /// The nearest point of `trim`'s boundary to `p` (unwrapped, see [`geom_param::Trim::unwrap`])
 /// on face `id`, as the edge location there (or, at the edge's end, its vertex); the face
 /// location `p` for a trim without loops.

@@ -23,9 +23,7 @@
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 use crate::features::feature_eval::{Body, FeatureEval, Loc, LocalFacePoint, params, with_params};
-use crate::features::feature_switch::{
-    TakenEntries, reenter, reenter_untaken, settle, settle_onto_trim, trim_exit,
-};
+use crate::features::feature_switch::{TakenEntries, reenter, reenter_untaken, settle};
 use crate::linalg::dense_solve::{
     by_size, cholesky, cholesky_n, cholesky_solve_n, smallest_eigenvalue_bound,
 };
@@ -1082,32 +1080,13 @@ pub(crate) fn take_step(a: &Body, b: &Body, cur: &State, step: &[f64; 4]) -> (Lo
             hit = Some((s, bound));
         }
     }
-    // A step that leaves a trimmed face is cut where it leaves, as at a rectangle's side, and
-    // that face's point goes onto the boundary there.
-    let mut leaves = [false; 2];
-    for (k, (body, loc)) in [(a, &cur.la), (b, &cur.lb)].into_iter().enumerate() {
-        if let Some(exit) = trim_exit(body, loc, [delta[2 * k], delta[2 * k + 1]])
-            && exit < alpha
-        {
-            alpha = exit;
-            hit = None;
-            leaves = [k == 0, k == 1];
-        }
-    }
     for &s in &slot[..cur.n] {
         x[s] += alpha * delta[s];
     }
     if let Some((s, bound)) = hit {
         x[s] = bound;
     }
-    let onto = |body: &Body, loc: Loc, leaving: bool| {
-        if leaving {
-            settle_onto_trim(body, loc)
-        } else {
-            settle(body, loc)
-        }
-    };
-    let la = onto(a, with_params(&cur.la, [x[0], x[1]]), leaves[0]);
-    let lb = onto(b, with_params(&cur.lb, [x[2], x[3]]), leaves[1]);
+    let la = settle(a, with_params(&cur.la, [x[0], x[1]]));
+    let lb = settle(b, with_params(&cur.lb, [x[2], x[3]]));
     (la, lb)
 }

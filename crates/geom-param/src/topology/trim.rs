@@ -305,66 +305,6 @@ impl Trim {
         w
     }
 
-    /// The fraction s in [0, 1] of the straight path from `from` to `from + step` (parameter
-    /// plane; `from` shifted by whole periods as in [`Trim::unwrap`], the path with it) at which
-    /// the path first leaves the region across the polylines: where it crosses a segment from
-    /// the segment's left (the region's side: the outer loop runs counter-clockwise, holes
-    /// clockwise) to its right. `None` when it leaves across none. A path that starts on the
-    /// outer side of a segment (within the polylines' flatness of the boundary) does not leave
-    /// across that segment.
-    ///
-    /// Why: a Newton step on a trimmed face that would end outside it is cut where it leaves,
-    /// as a step on a face's rectangle is cut at the side it reaches, so that both features of
-    /// the pair move by the same fraction of their steps. (Cut only at its end, the step moved
-    /// the other feature the whole way while this one stopped at the boundary: seeds on a
-    /// tube's top annulus under a loft had up to four steps in a row rejected, each a quarter
-    /// of the last, before one reached the rim.)
-    #[must_use]
-    pub fn first_exit(&self, from: DVec2, step: DVec2) -> Option<f64> {
-        let p = self.unwrap(from);
-        let q = p + step;
-        let (lo, hi) = (p.min(q), p.max(q));
-        let apart = |(box_lo, box_hi): (DVec2, DVec2)| {
-            box_lo.x > hi.x || box_lo.y > hi.y || box_hi.x < lo.x || box_hi.y < lo.y
-        };
-        let mut first: Option<f64> = None;
-        let mut cross = |(a, b): (DVec2, DVec2)| {
-            let edge = b - a;
-            // p strictly on the region's side of the segment's line, q strictly outside it.
-            let (side_p, side_q) = (edge.perp_dot(p - a), edge.perp_dot(q - a));
-            if !(side_p > 0.0 && side_q < 0.0) {
-                return;
-            }
-            // The segment's ends on either side of the path's line (or on it): the path
-            // crosses the segment itself, not only its line. A path through a polyline point
-            // is counted by both segments that share it, as both compute the same orientation.
-            let (side_a, side_b) = (step.perp_dot(a - p), step.perp_dot(b - p));
-            if (side_a > 0.0 && side_b > 0.0) || (side_a < 0.0 && side_b < 0.0) {
-                return;
-            }
-            let s = (side_p / (side_p - side_q)).clamp(0.0, 1.0);
-            if first.is_none_or(|f| s < f) {
-                first = Some(s);
-            }
-        };
-        for l in &self.loops {
-            for entry in &l.entries {
-                if apart(entry.bounds) {
-                    continue;
-                }
-                for (k, &run) in entry.boxes.iter().enumerate() {
-                    if !apart(run) {
-                        run_segments(entry, k).for_each(&mut cross);
-                    }
-                }
-            }
-            if let Some(segment) = l.closing_segment() {
-                cross(segment);
-            }
-        }
-        first
-    }
-
     /// Whether `uv` (shifted by periods, see [`Trim::unwrap`]) lies in the region, boundary
     /// included within `tolerance` (parameter units).
     ///
@@ -689,62 +629,6 @@ mod tests {
         (0.0..=10.0).contains(&p.x)
             && (0.0..=10.0).contains(&p.y)
             && holes.iter().all(|(c, r)| p.distance(*c) >= *r)
-    }
-
-    /// Where a straight path first leaves the region agrees with the closed forms: from points
-    /// of a grid inside the region, along paths of several lengths and directions (some ending
-    /// inside, some crossing a hole or a side, some crossing several), the point at the fraction
-    /// found lies on the exact boundary to the polylines' flatness, and every point of the path
-    /// before it that is clear of the boundary lies inside. A path with no exit found stays
-    /// inside wherever it is clear of the boundary.
-    #[test]
-    fn first_exit_matches_the_closed_forms() {
-        let holes = [(DVec2::new(3.0, 3.0), 1.5), (DVec2::new(7.0, 6.5), 2.0)];
-        let trim = plate(7, &holes);
-        let chord_error = 2.0 * super::FLATNESS * 10.0;
-        let (mut exits, mut stays) = (0, 0);
-        for i in 0..=20 {
-            for j in 0..=20 {
-                let p = DVec2::new(
-                    0.25 + 9.5 * f64::from(i) / 20.0,
-                    0.25 + 9.5 * f64::from(j) / 20.0,
-                );
-                if !inside(p, &holes) || boundary_distance(p, &holes) <= chord_error {
-                    continue;
-                }
-                for k in 0..12_u8 {
-                    let angle = std::f64::consts::TAU * (f64::from(k) + 0.3) / 12.0;
-                    let length = [0.4, 2.5, 9.0][usize::from(k % 3)];
-                    let step = length * DVec2::from_angle(angle);
-                    let found = trim.first_exit(p, step);
-                    let end = found.unwrap_or(1.0);
-                    for m in 0..=400 {
-                        let s = end * f64::from(m) / 400.0;
-                        let x = p + s * step;
-                        if boundary_distance(x, &holes) > chord_error {
-                            assert!(
-                                inside(x, &holes),
-                                "{p} + {s} x {step}: left at {x} before {found:?}"
-                            );
-                        }
-                    }
-                    if let Some(s) = found {
-                        let x = p + s * step;
-                        assert!(
-                            boundary_distance(x, &holes) <= chord_error,
-                            "{p} + {s} x {step}: {x} is off the boundary"
-                        );
-                        exits += 1;
-                    } else {
-                        stays += 1;
-                    }
-                }
-            }
-        }
-        assert!(
-            exits > 500 && stays > 500,
-            "{exits} exits, {stays} paths inside"
-        );
     }
 
     /// The nearest boundary point and containment agree with the closed forms (distance to
