@@ -15,7 +15,8 @@
 //! whose margin the motion since the front's reference pose has used up, and descends from
 //! them as a fresh traversal would. Whatever the pose, the
 //! answer is the one the traversal from the root gives, up to which of equally valid stopping
-//! pairs it reaches and the kept leaf pairs that a fresh traversal would have dropped since.
+//! pairs it reaches and the kept leaf or certified pairs that a fresh traversal would have
+//! dropped since.
 
 use crate::cones::cone_traversal::{FrontEntry, PairFrame, TraversalOutput, certifiable};
 use crate::cones::patch_tree::PatchTree;
@@ -117,8 +118,9 @@ impl ConeFront {
             self.entries.truncate(kept);
             self.settled = (kept, least_kept);
             if (used_up as f64) <= RETEST_FRACTION * (used_up + carried) as f64 {
-                // Kept leaf pairs go to the leaf pairs while their slack lasts; the others are
-                // tested again.
+                // Kept leaf pairs go to the leaf pairs while their slack lasts, kept certified
+                // pairs to the certified ones while their slack lasts and the rotation still
+                // certifies them; the others are tested again.
                 let frame = PairFrame::new(pose_ab);
                 let still_certified = |e: &FrontEntry| {
                     let nodes = tree_a
