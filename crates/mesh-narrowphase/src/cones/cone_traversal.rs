@@ -543,23 +543,29 @@ pub fn traverse(
             critical,
             meshes_may_meet,
         };
-        if critical && certifiable(a, b, axis_b, &frame.rotation) {
-            out.certified.push(stop);
-            let carry = LEAF_CARRY * a.radius.min(b.radius);
-            out.front.push(if carry > moved {
+        // The front's entry for a pair kept (a leaf pair, or a certified one) for a motion of
+        // `carry` since the reference pose, with its triangles' separating gap ([`KeptLeaf`]);
+        // tested again next query when the motion so far has used that up.
+        let kept_for = |carry: f64, gap: f64, certified: bool| {
+            if carry > moved {
                 FrontEntry {
                     kept: Some(KeptLeaf {
                         critical,
                         lower: lower - moved,
                         inset,
-                        gap: f64::NEG_INFINITY,
-                        certified: true,
+                        gap,
+                        certified,
                     }),
                     ..stopped(carry - moved)
                 }
             } else {
                 stopped(-1.0)
-            });
+            }
+        };
+        if critical && certifiable(a, b, axis_b, &frame.rotation) {
+            out.certified.push(stop);
+            let carry = LEAF_CARRY * a.radius.min(b.radius);
+            out.front.push(kept_for(carry, f64::NEG_INFINITY, true));
             continue;
         }
         match (a.is_leaf(), b.is_leaf()) {
@@ -610,20 +616,11 @@ pub fn traverse(
                         0.0
                     }
                 };
-                out.front.push(if carry > moved {
-                    FrontEntry {
-                        kept: Some(KeptLeaf {
-                            critical,
-                            lower: lower - moved,
-                            inset,
-                            gap: gap.unwrap_or(f64::NEG_INFINITY) - moved,
-                            certified: false,
-                        }),
-                        ..stopped(carry - moved)
-                    }
-                } else {
-                    stopped(-1.0)
-                });
+                out.front.push(kept_for(
+                    carry,
+                    gap.unwrap_or(f64::NEG_INFINITY) - moved,
+                    false,
+                ));
             }
             (true, false) => {
                 out.stack.push((i, j + 1));
