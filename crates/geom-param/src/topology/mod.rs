@@ -6,4 +6,5 @@ pub(crate) mod feature;
 pub(crate) mod pole_meridians;
 pub(crate) mod solid;
 pub(crate) mod trim;
+pub(crate) mod trim_grid;
 pub(crate) mod validate;

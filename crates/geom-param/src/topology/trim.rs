@@ -18,6 +18,7 @@
 use crate::curves::curve::ParamRange;
 use crate::curves::curve2::Curve2;
 use crate::topology::feature::EdgeId;
+use crate::topology::trim_grid::ContainmentGrid;
 use glam::DVec2;
 
 /// Largest chord deviation of a p-curve's polyline, relative to its loop's extent in (u, v).
@@ -218,6 +219,11 @@ pub struct Trim {
     /// Periods of (u, v) where the surface is periodic (0 otherwise): a point is classified at
     /// every shift by whole periods that brings it near the loops.
     pub periods: [f64; 2],
+    /// The box of every loop's polyline ([`Trim::bounds`]), built with the trim.
+    bounds: (DVec2, DVec2),
+    /// The cells of the loops' box that no polyline comes near, with their side of the trim
+    /// ([`Trim::contains`]'s first answer); built with the trim.
+    grid: Option<ContainmentGrid>,
 }
 
 /// The boundary point of a trim nearest to a (u, v).
@@ -240,25 +246,31 @@ impl Trim {
     #[must_use]
     pub fn new(loops: Vec<TrimLoop>, domain: &[ParamRange; 2]) -> Self {
         let period = |r: &ParamRange| if r.periodic { r.span() } else { 0.0 };
-        Self {
+        let mut lo = DVec2::splat(f64::INFINITY);
+        let mut hi = DVec2::splat(f64::NEG_INFINITY);
+        for e in loops.iter().flat_map(|l| &l.entries) {
+            lo = lo.min(e.bounds.0);
+            hi = hi.max(e.bounds.1);
+        }
+        let mut trim = Self {
             loops,
             periods: [period(&domain[0]), period(&domain[1])],
-        }
+            bounds: (lo, hi),
+            grid: None,
+        };
+        trim.grid = ContainmentGrid::new(
+            trim.bounds,
+            |uv| trim.polyline_distance(uv),
+            |uv| trim.winding(uv) != 0,
+        );
+        trim
     }
 
     /// The axis-aligned box of every loop's polyline: (min, max). From the entries' boxes, in
     /// the order of the points: the same corners as folding every point.
     #[must_use]
     pub fn bounds(&self) -> (DVec2, DVec2) {
-        let mut lo = DVec2::splat(f64::INFINITY);
-        let mut hi = DVec2::splat(f64::NEG_INFINITY);
-        for l in &self.loops {
-            for e in &l.entries {
-                lo = lo.min(e.bounds.0);
-                hi = hi.max(e.bounds.1);
-            }
-        }
-        (lo, hi)
+        self.bounds
     }
 
     /// The shift by whole periods that brings `uv` closest to the middle of the loops' box.
@@ -322,7 +334,18 @@ impl Trim {
         let band = 2.0 * FLATNESS * (hi - lo).max_element();
         // Only a boundary point within the tolerance or the band matters, and a polyline lies
         // within its flatness (half the band) of its curve: a point with no polyline point
-        // within one more band is classified by the winding number, without a nearest point.
+        // within one more band is classified by the winding number, without a nearest point;
+        // in a grid cell clear by that much, by the cell's (the same answer).
+        let limit = tolerance.max(band) + band;
+        if let Some(inside) = self.grid.as_ref().and_then(|g| g.side(uv, limit)) {
+            return inside;
+        }
+        self.contains_by_scan(uv, tolerance, band)
+    }
+
+    /// [`Trim::contains`] for an unwrapped `uv` of a trim with points, without the grid: from
+    /// the nearest polyline point within `tolerance.max(band) + band`, else the winding number.
+    fn contains_by_scan(&self, uv: DVec2, tolerance: f64, band: f64) -> bool {
         let Some(near) = self.nearest_within(uv, tolerance.max(band) + band) else {
             return self.winding(uv) != 0;
         };
@@ -414,46 +437,7 @@ impl Trim {
     /// within `limit` of it; `None` otherwise. Where it is found it is the same point (the
     /// polylines' nearest, polished), as the limit only skips what lies beyond it.
     fn nearest_within(&self, uv: DVec2, limit: f64) -> Option<TrimNearest> {
-        let mut best: Option<TrimNearest> = None;
-        // An entry whose box is farther than the limit or the best distance so far, by more
-        // than the rounding of a computed segment distance (a few ε of the coordinates), has no
-        // segment that would be taken; nor has a run of them.
-        let bound =
-            |best: &Option<TrimNearest>| best.as_ref().map_or(limit, |b| b.distance.min(limit));
-        for (li, l) in self.loops.iter().enumerate() {
-            for (ei, e) in l.entries.iter().enumerate() {
-                if farther(e.bounds, uv, bound(&best)) {
-                    continue;
-                }
-                for (k, &run) in e.boxes.iter().enumerate() {
-                    if farther(run, uv, bound(&best)) {
-                        continue;
-                    }
-                    for w in e.polyline[run_points(k, e.polyline.len())].windows(2) {
-                        let ((t0, a), (t1, b)) = (w[0], w[1]);
-                        let ab = b - a;
-                        let len2 = ab.length_squared();
-                        let s = if len2 > 0.0 {
-                            ((uv - a).dot(ab) / len2).clamp(0.0, 1.0)
-                        } else {
-                            0.0
-                        };
-                        let p = a + s * ab;
-                        let d = p.distance(uv);
-                        if best.is_none_or(|bst| d < bst.distance) {
-                            best = Some(TrimNearest {
-                                loop_index: li,
-                                index: ei,
-                                t: t0 + s * (t1 - t0),
-                                point: p,
-                                distance: d,
-                            });
-                        }
-                    }
-                }
-            }
-        }
-        let mut near = best.filter(|b| b.distance <= limit)?;
+        let mut near = self.polyline_nearest(uv, limit)?;
         let entry = &self.loops[near.loop_index].entries[near.index];
         let range = entry.pcurve.domain();
         let mut t = near.t;
@@ -500,6 +484,68 @@ impl Trim {
         near.distance = near.point.distance(uv);
         Some(near)
     }
+
+    /// The point of the polylines nearest to `uv` (its entry, parameter and distance), when
+    /// one lies within `limit`; `None` otherwise.
+    fn polyline_nearest(&self, uv: DVec2, limit: f64) -> Option<TrimNearest> {
+        let mut best: Option<TrimNearest> = None;
+        // An entry whose box is farther than the limit or the best distance so far, by more
+        // than the rounding of a computed segment distance (a few ε of the coordinates), has no
+        // segment that would be taken; nor has a run of them.
+        let bound =
+            |best: &Option<TrimNearest>| best.as_ref().map_or(limit, |b| b.distance.min(limit));
+        for (li, l) in self.loops.iter().enumerate() {
+            for (ei, e) in l.entries.iter().enumerate() {
+                if farther(e.bounds, uv, bound(&best)) {
+                    continue;
+                }
+                for (k, &run) in e.boxes.iter().enumerate() {
+                    if farther(run, uv, bound(&best)) {
+                        continue;
+                    }
+                    for w in e.polyline[run_points(k, e.polyline.len())].windows(2) {
+                        let ((t0, a), (t1, b)) = (w[0], w[1]);
+                        let (s, p) = closest_on_segment(uv, (a, b));
+                        let d = p.distance(uv);
+                        if best.is_none_or(|bst| d < bst.distance) {
+                            best = Some(TrimNearest {
+                                loop_index: li,
+                                index: ei,
+                                t: t0 + s * (t1 - t0),
+                                point: p,
+                                distance: d,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        best.filter(|b| b.distance <= limit)
+    }
+
+    /// The distance from `uv` to the polylines, the loops' closing segments included (∞ for
+    /// a trim without points).
+    fn polyline_distance(&self, uv: DVec2) -> f64 {
+        let closing = (self.loops.iter())
+            .filter_map(TrimLoop::closing_segment)
+            .map(|ab| closest_on_segment(uv, ab).1.distance(uv))
+            .fold(f64::INFINITY, f64::min);
+        self.polyline_nearest(uv, self.nearest_bound(uv))
+            .map_or(closing, |n| n.distance.min(closing))
+    }
+}
+
+/// The point of the segment `(a, b)` nearest to `uv`, with its fraction s along it:
+/// a + s (b - a), s in [0, 1] (0 for a segment of no length).
+fn closest_on_segment(uv: DVec2, (a, b): (DVec2, DVec2)) -> (f64, DVec2) {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let s = if len2 > 0.0 {
+        ((uv - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (s, a + s * ab)
 }
 
 /// The largest extent in u or v of the entries' end points and midpoints (at least 1e-300).
@@ -629,6 +675,37 @@ mod tests {
         (0.0..=10.0).contains(&p.x)
             && (0.0..=10.0).contains(&p.y)
             && holes.iter().all(|(c, r)| p.distance(*c) >= *r)
+    }
+
+    /// The grid answers exactly as the scan it skips: at every point of a fine lattice over
+    /// and around the plate (cells clear of the boundary, cells it crosses, points outside the
+    /// grid) and at tolerances from none to wider than a cell, and some cells do answer.
+    #[test]
+    fn the_grid_gives_the_scans_answers() {
+        let holes = [(DVec2::new(3.0, 3.0), 1.5), (DVec2::new(7.0, 6.5), 2.0)];
+        let trim = plate(5, &holes);
+        let grid = trim.grid.as_ref().expect("a plate has a grid");
+        let (lo, hi) = trim.bounds();
+        let band = 2.0 * super::FLATNESS * (hi - lo).max_element();
+        let mut answered = 0;
+        for i in 0..=300 {
+            for j in 0..=300 {
+                let p = DVec2::new(
+                    -0.5 + 11.0 * f64::from(i) / 300.0,
+                    -0.5 + 11.0 * f64::from(j) / 300.0,
+                );
+                for tolerance in [0.0, 1e-9, 0.05, 0.5] {
+                    let scan = trim.contains_by_scan(p, tolerance, band);
+                    assert_eq!(trim.contains(p, tolerance), scan, "{p} at {tolerance}");
+                    if let Some(side) = grid.side(p, tolerance.max(band) + band) {
+                        assert_eq!(side, scan, "{p} at {tolerance}");
+                        answered += 1;
+                    }
+                }
+            }
+        }
+        // Most of the plate lies clear of its boundary by more than a cell.
+        assert!(answered > 4 * 301 * 301 / 2, "{answered}");
     }
 
     /// The nearest boundary point and containment agree with the closed forms (distance to
