@@ -217,8 +217,20 @@ impl BevelledVolume {
     /// call, against 1.1 us for the separating-axis test alone (whose edge axes cost up to
     /// 13 x 13 x (n_a + n_b) dot products near contact).
     pub fn overlaps(&self, other: &BevelledVolume, rot_ab: DQuat, trans_ab: DVec3) -> bool {
+        self.separation(other, rot_ab, trans_ab).is_none()
+    }
+
+    /// [`BevelledVolume::overlaps`] with the separation it found: `None` where the volumes
+    /// intersect, otherwise the gap (mm) by which the separating direction's projections are
+    /// apart beyond the tolerances and slack: a lower bound on the volumes' distance.
+    pub fn separation(
+        &self,
+        other: &BevelledVolume,
+        rot_ab: DQuat,
+        trans_ab: DVec3,
+    ) -> Option<f64> {
         let (m, t, slack) = self.relative_frame(other.center, other.axes, rot_ab, trans_ab);
-        overlap(
+        separation(
             &self.shape(),
             &other.shape(),
             m,
@@ -232,6 +244,12 @@ impl BevelledVolume {
     /// [`BevelledVolume::overlaps`]). Same exactness and tolerance; the box contributes 3
     /// face normals, 3 edge directions and 8 vertices.
     pub fn overlaps_obb(&self, obb: &Obb, rot_ab: DQuat, trans_ab: DVec3) -> bool {
+        self.separation_obb(obb, rot_ab, trans_ab).is_none()
+    }
+
+    /// [`BevelledVolume::overlaps_obb`] with the separation it found, as in
+    /// [`BevelledVolume::separation`].
+    pub fn separation_obb(&self, obb: &Obb, rot_ab: DQuat, trans_ab: DVec3) -> Option<f64> {
         let (m, t, slack) = self.relative_frame(obb.center, obb.axes, rot_ab, trans_ab);
         let h = obb.half_extents;
         let corners: [DVec3; 8] = std::array::from_fn(|i| h * corner_signs(i));
@@ -247,7 +265,7 @@ impl BevelledVolume {
             edge_directions: &SLAB_DIRECTIONS[..3],
         };
         let box_tolerance = ROUND_PAD * h.max_element();
-        overlap(
+        separation(
             &self.shape(),
             &box_shape,
             m,
@@ -328,28 +346,31 @@ fn project(vertices: &[DVec3], axis: DVec3) -> (f64, f64) {
         })
 }
 
-/// Whether the intervals are apart by more than `slack`.
-fn disjoint(a: (f64, f64), b: (f64, f64), slack: f64) -> bool {
-    b.0 > a.1 + slack || a.0 > b.1 + slack
+/// By how much the intervals are apart beyond `slack`, when they are.
+fn apart(a: (f64, f64), b: (f64, f64), slack: f64) -> Option<f64> {
+    let gap = (b.0 - a.1).max(a.0 - b.1) - slack;
+    (gap > 0.0).then_some(gap)
 }
 
 /// Whether `a` (in its local frame, the working frame) and `b`, whose local coordinates map to
-/// the working frame by `q -> m q + t`, come within `slack` (mm) of each other: GJK on the
-/// vertex sets, and the separating-axis test when GJK finds no certificate (near touching,
-/// within about the slack, or non-finite input).
-fn overlap(a: &Shape<'_>, b: &Shape<'_>, m: DMat3, t: DVec3, slack: f64) -> bool {
+/// the working frame by `q -> m q + t`, come within `slack` (mm) of each other: `None` if they
+/// do, else the gap beyond `slack` along the separating direction found (mm, a lower bound on
+/// their distance). GJK on the vertex sets, and the separating-axis test when GJK finds no
+/// certificate (near touching, within about the slack, or non-finite input).
+fn separation(a: &Shape<'_>, b: &Shape<'_>, m: DMat3, t: DVec3, slack: f64) -> Option<f64> {
     match gjk_overlap(&a.hull, &b.hull, m, t, slack) {
-        GjkOutcome::Separated => false,
-        GjkOutcome::Overlapping => true,
-        GjkOutcome::Undecided => sat_overlap(a, b, m, t, slack),
+        GjkOutcome::Separated(gap) => Some(gap),
+        GjkOutcome::Overlapping => None,
+        GjkOutcome::Undecided => sat_separation(a, b, m, t, slack),
     }
 }
 
 /// Separating-axis test between `a` (in its local frame, the working frame) and `b`, whose
-/// local coordinates map to the working frame by `q -> m q + t`. Returns false as soon as
-/// an axis separates the projections by more than `slack` (mm). Order: face normals of `a`,
-/// face normals of `b`, a vertex-containment witness (returns true), edge cross products.
-fn sat_overlap(a: &Shape<'_>, b: &Shape<'_>, m: DMat3, t: DVec3, slack: f64) -> bool {
+/// local coordinates map to the working frame by `q -> m q + t`. Returns the gap beyond
+/// `slack` (mm) as soon as a unit axis separates the projections by more than `slack`, `None`
+/// for overlap. Order: face normals of `a`, face normals of `b`, a vertex-containment witness
+/// (overlap), edge cross products.
+fn sat_separation(a: &Shape<'_>, b: &Shape<'_>, m: DMat3, t: DVec3, slack: f64) -> Option<f64> {
     // Projection of b on a working-frame unit axis.
     let project_b = |axis: DVec3| {
         let (lo, hi) = project(b.hull.vertices, m.mul_transpose_vec3(axis));
@@ -357,16 +378,16 @@ fn sat_overlap(a: &Shape<'_>, b: &Shape<'_>, m: DMat3, t: DVec3, slack: f64) -> 
         (lo + shift, hi + shift)
     };
     for (k, &d) in a.face_directions.iter().enumerate() {
-        if disjoint((a.min[k], a.max[k]), project_b(d), slack) {
-            return false;
+        if let Some(gap) = apart((a.min[k], a.max[k]), project_b(d), slack) {
+            return Some(gap);
         }
     }
     for (k, &d) in b.face_directions.iter().enumerate() {
         let axis = m * d;
         let shift = axis.dot(t);
         let b_range = (b.min[k] + shift, b.max[k] + shift);
-        if disjoint(project(a.hull.vertices, axis), b_range, slack) {
-            return false;
+        if let Some(gap) = apart(project(a.hull.vertices, axis), b_range, slack) {
+            return Some(gap);
         }
     }
     // Cheap witness before the edge axes: a vertex of one inside the other (an exact slab
@@ -375,7 +396,7 @@ fn sat_overlap(a: &Shape<'_>, b: &Shape<'_>, m: DMat3, t: DVec3, slack: f64) -> 
     if b.hull.vertices.iter().any(|&v| a.contains(m * v + t))
         || a.hull.vertices.iter().any(|&v| b.contains(m_inv * (v - t)))
     {
-        return true;
+        return None;
     }
     for &eb in b.edge_directions {
         let eb = m * eb;
@@ -386,12 +407,12 @@ fn sat_overlap(a: &Shape<'_>, b: &Shape<'_>, m: DMat3, t: DVec3, slack: f64) -> 
                 continue;
             }
             let axis = cross / len;
-            if disjoint(project(a.hull.vertices, axis), project_b(axis), slack) {
-                return false;
+            if let Some(gap) = apart(project(a.hull.vertices, axis), project_b(axis), slack) {
+                return Some(gap);
             }
         }
     }
-    true
+    None
 }
 
 /// The 18 bounding planes `(normal, offset)`: plane `2k` is `d_k . q = min[k]`, plane

@@ -33,12 +33,15 @@ use geom_param::{ComponentId, DPose3, ObjectModel};
 ///
 /// # Notes for implementors
 /// A tree must not borrow the object (it is `Send + Sync` and shared by all queries), and
-/// `overlapping_components` must give the same set of pairs whatever the scratch contents
-/// (scratch is a cache of capacity, not of answers).
+/// `overlapping_components` must give the same set of pairs whatever the scratch contents:
+/// scratch may carry what the last query learnt (as [`crate::HybridBvh`] carries its
+/// traversal front, the node pairs it found apart and by how much) only where that proves
+/// the answer, never as a guess (a pair may be left out only when its volumes are certainly
+/// still apart).
 pub trait BroadPhase {
     /// Per-object preprocessing (built once, shared by all queries).
     type Tree: Send + Sync;
-    /// Caller-owned scratch (traversal stack etc.).
+    /// Caller-owned scratch (traversal stack, what the last query learnt, etc.).
     type Scratch: Default + Send;
 
     /// Builds the tree of `object` whose every volume covers its components' exact surfaces

@@ -18,10 +18,11 @@ const MAX_ITERATIONS: usize = 48;
 const MIN_PROGRESS: f64 = 1e-12;
 
 /// Outcome of [`gjk_overlap`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum GjkOutcome {
-    /// An axis separates the projections of the two hulls by more than the slack.
-    Separated,
+    /// An axis separates the projections of the two hulls by more than the slack; the gap
+    /// (mm) by which they are apart beyond it.
+    Separated(f64),
     /// A point of the Minkowski difference of the hulls lies within the slack of the origin:
     /// the hulls come within the slack (plus rounding) of each other.
     Overlapping,
@@ -152,7 +153,7 @@ pub(crate) fn gjk_overlap(
             (ia, ib) = (a.scan(-v), b.scan(v_b));
             w = minkowski(ia, ib);
             if separated(w) {
-                return GjkOutcome::Separated;
+                return GjkOutcome::Separated(v.dot(w) / vv.sqrt() - slack);
             }
             if stalled(w) {
                 return GjkOutcome::Undecided;
@@ -346,20 +347,33 @@ mod tests {
         // Rotated about z by 0.3 rad, b's extent along x is cos 0.3 + sin 0.3.
         let reach = 1.0 + 0.3f64.cos() + 0.3f64.sin();
         let slack = 1e-10;
-        for (offset, expected) in [
-            (0.0, GjkOutcome::Overlapping),
-            (reach - 1e-3, GjkOutcome::Overlapping),
-            (reach + 1e-3, GjkOutcome::Separated),
-            (10.0, GjkOutcome::Separated),
+        // The cubes' distance at each offset along x: `None` where they overlap.
+        for (offset, distance) in [
+            (0.0, None),
+            (reach - 1e-3, None),
+            (reach + 1e-3, Some(1e-3)),
+            (10.0, Some(10.0 - reach)),
         ] {
             let t = DVec3::new(offset, 0.2, -0.1);
-            assert_eq!(
-                gjk_overlap(&hull(&a), &hull(&b), rot, t, slack),
-                expected,
-                "{offset}"
-            );
-            let outcome = gjk_overlap(&climbing(&a), &climbing(&b), rot, t, slack);
-            assert_eq!(outcome, expected, "{offset}, climbing");
+            for (outcome, how) in [
+                (gjk_overlap(&hull(&a), &hull(&b), rot, t, slack), "scanning"),
+                (
+                    gjk_overlap(&climbing(&a), &climbing(&b), rot, t, slack),
+                    "climbing",
+                ),
+            ] {
+                match (outcome, distance) {
+                    (GjkOutcome::Overlapping, None) => {}
+                    // The gap is a lower bound on the distance, beyond the slack.
+                    (GjkOutcome::Separated(gap), Some(d)) => {
+                        assert!(
+                            gap > 0.0 && gap <= d - slack + 1e-12,
+                            "{offset}, {how}: {gap}"
+                        );
+                    }
+                    other => panic!("{offset}, {how}: {other:?}"),
+                }
+            }
         }
     }
 
@@ -379,25 +393,33 @@ mod tests {
             gjk_overlap(&hull(&square), &hull(&point), id, at(0.0), 1e-12),
             GjkOutcome::Overlapping
         );
-        assert_eq!(
-            gjk_overlap(&hull(&square), &hull(&point), id, at(1e-6), 1e-12),
-            GjkOutcome::Separated
-        );
+        // Separated by 1e-6 mm (to the rounding of the inputs), less the slack.
+        let gap = |outcome| match outcome {
+            GjkOutcome::Separated(gap) => gap,
+            other => panic!("{other:?}"),
+        };
+        let expected = 1e-6 - 1e-12;
+        let found = gap(gjk_overlap(
+            &hull(&square),
+            &hull(&point),
+            id,
+            at(1e-6),
+            1e-12,
+        ));
+        assert!((found - expected).abs() <= 1e-15, "{found}");
         let stick = [DVec3::new(0.0, 0.0, -1.0), DVec3::new(0.0, 0.0, 1.0)];
         assert_eq!(
             gjk_overlap(&hull(&square), &hull(&stick), id, at(0.5), 1e-12),
             GjkOutcome::Overlapping
         );
-        assert_eq!(
-            gjk_overlap(
-                &hull(&square),
-                &hull(&stick),
-                id,
-                DVec3::new(1.0 + 1e-6, 0.0, 0.5),
-                1e-12
-            ),
-            GjkOutcome::Separated
-        );
+        let found = gap(gjk_overlap(
+            &hull(&square),
+            &hull(&stick),
+            id,
+            DVec3::new(1.0 + 1e-6, 0.0, 0.5),
+            1e-12,
+        ));
+        assert!((found - expected).abs() <= 1e-15, "{found}");
         assert_eq!(
             gjk_overlap(&hull(&square), &hull(&point), id, DVec3::NAN, 1e-12),
             GjkOutcome::Undecided

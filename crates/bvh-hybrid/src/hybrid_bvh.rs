@@ -8,7 +8,8 @@ use crate::hybrid_tree::{HybridTree, TreeOptions};
 use crate::traverse::{TraversalScratch, overlapping_pairs};
 
 /// The default Stage 1: one [`HybridTree`] per object, built with its `options`, queried by
-/// simultaneous descent ([`overlapping_pairs`]). Two trees built with different options can
+/// simultaneous descent ([`overlapping_pairs`]), from the last query's front when the scratch
+/// holds one for the same trees. Two trees built with different options can
 /// be queried against each other.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct HybridBvh {

@@ -3,6 +3,7 @@
 
 use geom_param::{ComponentId, ObjectModel};
 use glam::DVec3;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::bevelled_volume::BevelledVolume;
 use crate::obb::Obb;
@@ -64,11 +65,21 @@ pub struct Node {
 /// Every leaf volume covers its component's exact surface inflated by `margin / 2` (it is
 /// fitted over the component's mesh vertices, widened by `margin / 2` plus the mesh's chordal
 /// error), and every node's box covers every leaf volume below it.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct HybridTree {
     nodes: Vec<Node>,
     margin: f64,
     options: TreeOptions,
+    /// Unique per build (a clone keeps it: same nodes), so that a traversal front recorded
+    /// on a pair of trees is never taken for another pair's ([`crate::TraversalScratch`]).
+    id: u64,
+}
+
+/// Trees compare by their nodes, margin and options (not by which build made them).
+impl PartialEq for HybridTree {
+    fn eq(&self, other: &Self) -> bool {
+        self.nodes == other.nodes && self.margin == other.margin && self.options == other.options
+    }
 }
 
 impl HybridTree {
@@ -94,10 +105,12 @@ impl HybridTree {
                 Leaf::fit(component, &mesh.positions, inflate, options.leaf_shape)
             })
             .collect();
+        static BUILDS: AtomicU64 = AtomicU64::new(0);
         let mut tree = HybridTree {
             nodes: Vec::with_capacity((2 * leaves.len()).saturating_sub(1)),
             margin,
             options: *options,
+            id: BUILDS.fetch_add(1, Ordering::Relaxed),
         };
         if !leaves.is_empty() {
             let mut order: Vec<usize> = (0..leaves.len()).collect();
@@ -172,6 +185,11 @@ impl HybridTree {
             }
         }
         depth
+    }
+
+    /// Which build made the tree (unique per build within the process).
+    pub(crate) fn id(&self) -> u64 {
+        self.id
     }
 
     /// The margin (mm) the tree was built for.

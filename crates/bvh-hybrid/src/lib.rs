@@ -15,7 +15,8 @@
 //!
 //! - [`BroadPhase`]: the Stage 1 boundary trait (frames, margin, guarantees).
 //! - [`HybridBvh`]: its default implementation; [`HybridTree`] (build, [`HybridTree::validate`])
-//!   and [`overlapping_pairs`] (tree-vs-tree traversal with caller-owned [`TraversalScratch`]).
+//!   and [`overlapping_pairs`] (tree-vs-tree traversal with caller-owned [`TraversalScratch`],
+//!   which keeps the last traversal's front for the next query on the same trees).
 //! - [`obb`], [`bevelled_volume`]: the two volume types and their overlap tests.
 //!
 //! What this crate deliberately does not know: meshes beyond their vertex positions and
@@ -31,6 +32,7 @@ mod hybrid_bvh;
 mod hybrid_tree;
 pub mod obb;
 mod split;
+mod traversal_front;
 mod traverse;
 mod validate;
 

@@ -143,6 +143,14 @@ impl Obb {
     /// about 1e-12 of the magnitudes involved, so touching or overlapping boxes are never
     /// reported separated. Cost: about 200 flops, with early exits.
     pub fn overlaps(&self, other: &Obb) -> bool {
+        self.separation(other).is_none()
+    }
+
+    /// [`Obb::overlaps`] with the separation it found: `None` where the boxes intersect,
+    /// otherwise the gap (mm) by which the first separating axis's projections are apart
+    /// beyond the rounding slack. A lower bound on the boxes' distance: on a cross-product
+    /// axis the projections are scaled by its length (at most 1).
+    pub fn separation(&self, other: &Obb) -> Option<f64> {
         let a = self.half_extents.to_array();
         let b = other.half_extents.to_array();
         let d = other.center - self.center;
@@ -166,19 +174,23 @@ impl Obb {
                 + a.iter().sum::<f64>()
                 + b.iter().sum::<f64>());
 
+        let apart = |projected: f64, reach: f64| {
+            let gap = projected.abs() - (reach + slack);
+            (gap > 0.0).then_some(gap)
+        };
         // Face normals of self.
         for i in 0..3 {
             let rb: f64 = (0..3).map(|j| b[j] * abs_r[i][j]).sum();
-            if t[i].abs() > a[i] + rb + slack {
-                return false;
+            if let Some(gap) = apart(t[i], a[i] + rb) {
+                return Some(gap);
             }
         }
         // Face normals of other.
         for j in 0..3 {
             let ra: f64 = (0..3).map(|i| a[i] * abs_r[i][j]).sum();
             let tj: f64 = (0..3).map(|i| t[i] * r[i][j]).sum();
-            if tj.abs() > ra + b[j] + slack {
-                return false;
+            if let Some(gap) = apart(tj, ra + b[j]) {
+                return Some(gap);
             }
         }
         // Cross products self.axis(i) x other.axis(j).
@@ -189,12 +201,12 @@ impl Obb {
                 let ra = a[i1] * abs_r[i2][j] + a[i2] * abs_r[i1][j];
                 let rb = b[j1] * abs_r[i][j2] + b[j2] * abs_r[i][j1];
                 let tl = t[i2] * r[i1][j] - t[i1] * r[i2][j];
-                if tl.abs() > ra + rb + slack {
-                    return false;
+                if let Some(gap) = apart(tl, ra + rb) {
+                    return Some(gap);
                 }
             }
         }
-        true
+        None
     }
 }
 

@@ -12,13 +12,16 @@ use glam::{DMat3, DQuat, DVec3};
 use crate::bevelled_volume::BevelledVolume;
 use crate::hybrid_tree::{HybridTree, Node, NodeKind};
 use crate::obb::Obb;
+use crate::traversal_front::TraversalFront;
 
-/// Caller-owned scratch of [`overlapping_pairs`]: the stack of node pairs still to test. It
-/// only grows (to at most about `depth_a + depth_b` entries), so queries allocate nothing once
-/// it has reached that size.
+/// Caller-owned scratch of [`overlapping_pairs`]: the stack of node pairs still to test, and
+/// the front of the last traversal ([`TraversalFront`]: where it stopped on which pair of
+/// trees, and by how much the pairs it found apart were apart). Both only grow, so queries
+/// allocate nothing once they have reached their sizes.
 #[derive(Clone, Debug, Default)]
 pub struct TraversalScratch {
     stack: Vec<(u32, u32)>,
+    front: TraversalFront,
 }
 
 /// B's pose in A's frame in the forms the tests use, with its inverse computed on demand.
@@ -59,7 +62,12 @@ impl RelativePose {
 
 /// Clears `out` and pushes every (component of A, component of B) whose leaf volumes overlap,
 /// B being posed in A's frame by `pose_ab` (`point_in_a = pose_ab * point_in_b`). Each pair
-/// is pushed once, in depth-first order. See [`crate::BroadPhase::overlapping_components`].
+/// is pushed once; the pairs are sorted. See [`crate::BroadPhase::overlapping_components`].
+///
+/// A query on the trees of the scratch's last query starts from that traversal's front
+/// ([`TraversalFront`]): the node pairs it found apart by more than B's motion since are
+/// not tested again (their volumes are still apart: a fresh traversal could only report them
+/// where rounding makes it err towards reporting).
 pub fn overlapping_pairs(
     a: &HybridTree,
     b: &HybridTree,
@@ -68,17 +76,18 @@ pub fn overlapping_pairs(
     out: &mut Vec<(ComponentId, ComponentId)>,
 ) {
     out.clear();
-    let stack = &mut scratch.stack;
+    let TraversalScratch { stack, front } = scratch;
     stack.clear();
     let (nodes_a, nodes_b) = (a.nodes(), b.nodes());
     if nodes_a.is_empty() || nodes_b.is_empty() {
         return;
     }
     let pose = RelativePose::new(pose_ab);
-    stack.push((0, 0));
+    front.start((a, b), (pose.rot, pose.trans), stack);
     while let Some((ia, ib)) = stack.pop() {
         let (node_a, node_b) = (&nodes_a[ia as usize], &nodes_b[ib as usize]);
-        if !boxes_overlap(node_a, node_b, &pose) {
+        if let Some(gap) = boxes_gap(node_a, node_b, &pose) {
+            front.apart(ia, ib, gap);
             continue;
         }
         match (&node_a.kind, &node_b.kind) {
@@ -91,11 +100,13 @@ pub fn overlapping_pairs(
                     component: cb,
                     bevelled: vb,
                 },
-            ) => {
-                if leaves_overlap(node_a, va.as_deref(), node_b, vb.as_deref(), &pose) {
+            ) => match leaves_gap(node_a, va.as_deref(), node_b, vb.as_deref(), &pose) {
+                Some(gap) => front.apart(ia, ib, gap),
+                None => {
+                    front.met(ia, ib);
                     out.push((*ca, *cb));
                 }
-            }
+            },
             (NodeKind::Internal { children }, NodeKind::Leaf { .. }) => {
                 stack.extend(children.iter().map(|&c| (c, ib)));
             }
@@ -111,33 +122,36 @@ pub fn overlapping_pairs(
             }
         }
     }
+    out.sort_unstable();
 }
 
-/// Whether the two nodes' boxes overlap (an unbounded box overlaps everything).
-fn boxes_overlap(a: &Node, b: &Node, pose: &RelativePose) -> bool {
+/// `None` when the two nodes' boxes overlap (an unbounded box overlaps everything), else the
+/// gap the separating-axis test found between them (mm, a lower bound on their distance).
+fn boxes_gap(a: &Node, b: &Node, pose: &RelativePose) -> Option<f64> {
     match (&a.bounds, &b.bounds) {
-        (Some(box_a), Some(box_b)) => box_a.overlaps(&pose.box_in_a(box_b)),
-        _ => true,
+        (Some(box_a), Some(box_b)) => box_a.separation(&pose.box_in_a(box_b)),
+        _ => None,
     }
 }
 
 /// The exact test of two leaves whose boxes overlap: bevelled against bevelled, bevelled
 /// against a box leaf, or (two box leaves, or an unbounded leaf) the box test already done.
-fn leaves_overlap(
+/// `None` when they overlap, else the gap found (mm, a lower bound on their distance).
+fn leaves_gap(
     a: &Node,
     va: Option<&BevelledVolume>,
     b: &Node,
     vb: Option<&BevelledVolume>,
     pose: &RelativePose,
-) -> bool {
+) -> Option<f64> {
     match (va, vb, &a.bounds, &b.bounds) {
-        (Some(va), Some(vb), _, _) => va.overlaps(vb, pose.rot, pose.trans),
-        (Some(va), None, _, Some(box_b)) => va.overlaps_obb(box_b, pose.rot, pose.trans),
+        (Some(va), Some(vb), _, _) => va.separation(vb, pose.rot, pose.trans),
+        (Some(va), None, _, Some(box_b)) => va.separation_obb(box_b, pose.rot, pose.trans),
         (None, Some(vb), Some(box_a), _) => {
             let (rot_ba, trans_ba) = pose.inverse();
-            vb.overlaps_obb(box_a, rot_ba, trans_ba)
+            vb.separation_obb(box_a, rot_ba, trans_ba)
         }
-        _ => true,
+        _ => None,
     }
 }
 
