@@ -5,7 +5,9 @@
 
 use glam::{DMat3, DQuat, DVec3};
 
-use crate::gjk::{BOX_NEIGHBOURS, BOX_OCTANT_STARTS, GjkOutcome, Hull, gjk_overlap};
+use crate::gjk::{
+    BOX_NEIGHBOURS, BOX_OCTANT_STARTS, GjkOutcome, Hull, OverlapWitness, gjk_overlap,
+};
 use crate::obb::{Obb, ROUND_PAD, corner_signs, to_local};
 
 const S: f64 = std::f64::consts::FRAC_1_SQRT_2;
@@ -229,6 +231,19 @@ impl BevelledVolume {
         rot_ab: DQuat,
         trans_ab: DVec3,
     ) -> Option<f64> {
+        self.separation_witnessed(other, rot_ab, trans_ab, &mut None)
+    }
+
+    /// [`BevelledVolume::separation`] starting from an overlap `witness` kept from an earlier
+    /// call on the same two volumes: where its four vertex pairs still prove the overlap, no
+    /// GJK runs; otherwise it becomes GJK's new witness, or `None`.
+    pub(crate) fn separation_witnessed(
+        &self,
+        other: &BevelledVolume,
+        rot_ab: DQuat,
+        trans_ab: DVec3,
+        witness: &mut Option<OverlapWitness>,
+    ) -> Option<f64> {
         let (m, t, slack) = self.relative_frame(other.center, other.axes, rot_ab, trans_ab);
         separation(
             &self.shape(),
@@ -236,6 +251,7 @@ impl BevelledVolume {
             m,
             t,
             slack + self.tolerance + other.tolerance,
+            witness,
         )
     }
 
@@ -271,6 +287,7 @@ impl BevelledVolume {
             m,
             t,
             slack + self.tolerance + box_tolerance,
+            &mut None,
         )
     }
 
@@ -357,8 +374,17 @@ fn apart(a: (f64, f64), b: (f64, f64), slack: f64) -> Option<f64> {
 /// do, else the gap beyond `slack` along the separating direction found (mm, a lower bound on
 /// their distance). GJK on the vertex sets, and the separating-axis test when GJK finds no
 /// certificate (near touching, within about the slack, or non-finite input).
-fn separation(a: &Shape<'_>, b: &Shape<'_>, m: DMat3, t: DVec3, slack: f64) -> Option<f64> {
-    match gjk_overlap(&a.hull, &b.hull, m, t, slack) {
+///
+/// `witness`: see [`gjk_overlap`].
+fn separation(
+    a: &Shape<'_>,
+    b: &Shape<'_>,
+    m: DMat3,
+    t: DVec3,
+    slack: f64,
+    witness: &mut Option<OverlapWitness>,
+) -> Option<f64> {
+    match gjk_overlap(&a.hull, &b.hull, m, t, slack, witness) {
         GjkOutcome::Separated(gap) => Some(gap),
         GjkOutcome::Overlapping => None,
         GjkOutcome::Undecided => sat_separation(a, b, m, t, slack),

@@ -104,9 +104,20 @@ impl Hull<'_> {
     }
 }
 
+/// The vertex pairs (A's index, B's index) of a simplex of four points of hull(A - B) that held
+/// the origin: kept by the caller of [`gjk_overlap`] for the next call on the same hulls. At
+/// any pose its four points are points of hull(A - B), so where they still hold the origin
+/// (within the slack) the hulls overlap, as GJK's own final simplex would show.
+pub(crate) type OverlapWitness = [(u16, u16); 4];
+
 /// GJK on hulls `a` and `b`, `a` given in the working frame and `b` in a frame mapped to it by
 /// `q -> m q + t` (`m` a rotation). `slack` (mm) is the distance within which the hulls count
 /// as overlapping; separation is reported only along an axis whose gap exceeds it.
+///
+/// `witness`: a simplex kept from an earlier call on the same hulls. When its four points
+/// hold the origin at this pose the answer is `Overlapping` at once; otherwise GJK runs, and
+/// the witness becomes its final simplex when that holds the origin (`None` for any other
+/// outcome).
 ///
 /// Cost per iteration: one support point on each side, by hill climbing from the previous
 /// one (a few dot products), and the closest point on a simplex of at most four points. The
@@ -118,6 +129,7 @@ pub(crate) fn gjk_overlap(
     m: DMat3,
     t: DVec3,
     slack: f64,
+    witness: &mut Option<OverlapWitness>,
 ) -> GjkOutcome {
     if a.vertices.is_empty() || b.vertices.is_empty() {
         return GjkOutcome::Undecided;
@@ -126,6 +138,21 @@ pub(crate) fn gjk_overlap(
     // The point of hull(A - B) minimising `v . x` (the support point in direction -v) from
     // the vertices of A and B maximising `-v . p` and `v . p`.
     let minkowski = |ia: usize, ib: usize| a.vertices[ia] - (m * b.vertices[ib] + t);
+    let holds_origin = |pairs: &OverlapWitness| {
+        let point = |k: usize| {
+            let (ia, ib) = (usize::from(pairs[k].0), usize::from(pairs[k].1));
+            (ia < a.vertices.len() && ib < b.vertices.len()).then(|| minkowski(ia, ib))
+        };
+        let (Some(p), Some(q), Some(r), Some(s)) = (point(0), point(1), point(2), point(3)) else {
+            return false;
+        };
+        let (closest, face) = tetrahedron(p, q, r, s);
+        face.len == 4 && closest.length_squared() <= slack * slack
+    };
+    if witness.as_ref().is_some_and(holds_origin) {
+        return GjkOutcome::Overlapping;
+    }
+    *witness = None;
     let (mut ia, mut ib) = (0, 0);
     // Some point of hull(A - B) near its closest point to the origin to start with: the
     // difference of the frame origins (both frames are centred on their volumes).
@@ -159,13 +186,17 @@ pub(crate) fn gjk_overlap(
                 return GjkOutcome::Undecided;
             }
         }
-        simplex.push(w);
+        #[allow(clippy::cast_possible_truncation)]
+        simplex.push(w, (ia as u16, ib as u16));
         let closest = simplex.reduce();
         let closest_squared = closest.length_squared();
         // A full tetrahedron means the origin is inside it: `closest` is the origin as a
         // convex combination of its corners, up to rounding.
         if simplex.len == 4 {
             return if closest_squared <= slack * slack {
+                let fits = a.vertices.len() <= usize::from(u16::MAX)
+                    && b.vertices.len() <= usize::from(u16::MAX);
+                *witness = fits.then_some(simplex.pairs);
                 GjkOutcome::Overlapping
             } else {
                 GjkOutcome::Undecided
@@ -181,37 +212,48 @@ pub(crate) fn gjk_overlap(
     GjkOutcome::Undecided
 }
 
-/// Up to four points of the Minkowski difference.
+/// Up to four points of the Minkowski difference, with the vertex pairs (A's, B's) that made
+/// them.
 #[derive(Clone, Copy, Debug, Default)]
 struct Simplex {
     points: [DVec3; 4],
+    pairs: [(u16, u16); 4],
     len: usize,
 }
 
 impl Simplex {
+    /// A face of the simplex being reduced, from its points; their pairs are set by
+    /// [`Simplex::reduce`].
     fn from_points(points: &[DVec3]) -> Self {
         let mut simplex = Simplex::default();
         for &p in points {
-            simplex.push(p);
+            simplex.push(p, (0, 0));
         }
         simplex
     }
 
-    fn push(&mut self, p: DVec3) {
+    fn push(&mut self, p: DVec3, pair: (u16, u16)) {
         self.points[self.len] = p;
+        self.pairs[self.len] = pair;
         self.len += 1;
     }
 
     /// Replaces the simplex by the face whose hull holds (up to rounding) its point closest
-    /// to the origin, and returns that point, always a convex combination of the points.
+    /// to the origin, and returns that point, always a convex combination of the points. The
+    /// face's points are copies of the simplex's, so each finds its pair by equality.
     fn reduce(&mut self) -> DVec3 {
-        let (closest, face) = match self.points[..self.len] {
+        let (closest, mut face) = match self.points[..self.len] {
             [p] => (p, Simplex::from_points(&[p])),
             [p, q] => segment(p, q),
             [p, q, r] => triangle(p, q, r),
             [p, q, r, s] => tetrahedron(p, q, r, s),
             _ => unreachable!("a simplex has one to four points"),
         };
+        for k in 0..face.len {
+            if let Some(j) = (0..self.len).find(|&j| self.points[j] == face.points[k]) {
+                face.pairs[k] = self.pairs[j];
+            }
+        }
         *self = face;
         closest
     }
@@ -356,9 +398,12 @@ mod tests {
         ] {
             let t = DVec3::new(offset, 0.2, -0.1);
             for (outcome, how) in [
-                (gjk_overlap(&hull(&a), &hull(&b), rot, t, slack), "scanning"),
                 (
-                    gjk_overlap(&climbing(&a), &climbing(&b), rot, t, slack),
+                    gjk_overlap(&hull(&a), &hull(&b), rot, t, slack, &mut None),
+                    "scanning",
+                ),
+                (
+                    gjk_overlap(&climbing(&a), &climbing(&b), rot, t, slack, &mut None),
                     "climbing",
                 ),
             ] {
@@ -377,6 +422,34 @@ mod tests {
         }
     }
 
+    /// A witness kept from an overlap answers the next overlap as GJK would, and never hides
+    /// a separation: moved apart, the cubes are separated and the witness is dropped; a witness
+    /// naming vertices the hulls do not have is ignored.
+    #[test]
+    fn a_kept_witness_never_hides_a_separation() {
+        let (a, b) = (cube(DVec3::ZERO, 1.0), cube(DVec3::ZERO, 1.0));
+        let rot = DMat3::from_quat(DQuat::from_rotation_z(0.3));
+        let slack = 1e-10;
+        let mut witness = None;
+        let deep = DVec3::new(0.5, 0.2, -0.1);
+        let outcome = gjk_overlap(&hull(&a), &hull(&b), rot, deep, slack, &mut witness);
+        assert_eq!(outcome, GjkOutcome::Overlapping);
+        let kept = witness.expect("GJK's final simplex held the origin");
+        // Nudged: still overlapping, from the witness, which stays.
+        let nudged = deep + DVec3::splat(1e-3);
+        let outcome = gjk_overlap(&hull(&a), &hull(&b), rot, nudged, slack, &mut witness);
+        assert_eq!((outcome, witness), (GjkOutcome::Overlapping, Some(kept)));
+        // Apart: the witness fails, GJK separates them and drops it.
+        let apart = DVec3::new(3.0, 0.2, -0.1);
+        let outcome = gjk_overlap(&hull(&a), &hull(&b), rot, apart, slack, &mut witness);
+        assert!(matches!(outcome, GjkOutcome::Separated(_)), "{outcome:?}");
+        assert_eq!(witness, None);
+        let mut bogus = Some([(40, 0), (0, 40), (1, 1), (2, 2)]);
+        let outcome = gjk_overlap(&hull(&a), &hull(&b), rot, deep, slack, &mut bogus);
+        assert_eq!(outcome, GjkOutcome::Overlapping);
+        assert!(bogus.is_some_and(|w| w.iter().all(|&(i, j)| i < 8 && j < 8)));
+    }
+
     #[test]
     fn degenerate_point_sets() {
         // A point inside a flat square, and just above it; a segment crossing it.
@@ -390,7 +463,7 @@ mod tests {
         let id = DMat3::IDENTITY;
         let at = |z: f64| DVec3::new(0.3, -0.2, z);
         assert_eq!(
-            gjk_overlap(&hull(&square), &hull(&point), id, at(0.0), 1e-12),
+            gjk_overlap(&hull(&square), &hull(&point), id, at(0.0), 1e-12, &mut None),
             GjkOutcome::Overlapping
         );
         // Separated by 1e-6 mm (to the rounding of the inputs), less the slack.
@@ -405,11 +478,12 @@ mod tests {
             id,
             at(1e-6),
             1e-12,
+            &mut None,
         ));
         assert!((found - expected).abs() <= 1e-15, "{found}");
         let stick = [DVec3::new(0.0, 0.0, -1.0), DVec3::new(0.0, 0.0, 1.0)];
         assert_eq!(
-            gjk_overlap(&hull(&square), &hull(&stick), id, at(0.5), 1e-12),
+            gjk_overlap(&hull(&square), &hull(&stick), id, at(0.5), 1e-12, &mut None),
             GjkOutcome::Overlapping
         );
         let found = gap(gjk_overlap(
@@ -418,10 +492,18 @@ mod tests {
             id,
             DVec3::new(1.0 + 1e-6, 0.0, 0.5),
             1e-12,
+            &mut None,
         ));
         assert!((found - expected).abs() <= 1e-15, "{found}");
         assert_eq!(
-            gjk_overlap(&hull(&square), &hull(&point), id, DVec3::NAN, 1e-12),
+            gjk_overlap(
+                &hull(&square),
+                &hull(&point),
+                id,
+                DVec3::NAN,
+                1e-12,
+                &mut None
+            ),
             GjkOutcome::Undecided
         );
     }

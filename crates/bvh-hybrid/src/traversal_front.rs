@@ -9,9 +9,13 @@
 //! two poses and ρ the largest distance from B's origin of a point of the node's box
 //! (|R1 x − R0 x| ≤ 2 sin(θ/2) |x| ≤ θ |x|). A pair apart by more than that is still apart; it
 //! is kept with its gap less the motion, the others are tested again from where they stopped.
+//! A met pair is tested again from the simplex that proved its overlap (four vertex pairs of
+//! the two volumes, [`crate::gjk::OverlapWitness`]): where those still hold the origin at the
+//! new pose, the volumes still meet, without a GJK run.
 
 use glam::{DQuat, DVec3};
 
+use crate::gjk::OverlapWitness;
 use crate::hybrid_tree::{HybridTree, Node};
 
 /// A node pair found apart, and a lower bound on their volumes' distance (mm) at the front's
@@ -23,6 +27,15 @@ struct ApartPair {
     gap: f64,
 }
 
+/// A leaf pair whose volumes met, with the simplex that proved it (see
+/// [`crate::gjk::OverlapWitness`]) when GJK found one.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct MetPair {
+    pub(crate) a: u32,
+    pub(crate) b: u32,
+    pub(crate) witness: Option<OverlapWitness>,
+}
+
 /// The front of the last traversal (see the module documentation).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct TraversalFront {
@@ -32,18 +45,19 @@ pub(crate) struct TraversalFront {
     rotation: DQuat,
     translation: DVec3,
     apart: Vec<ApartPair>,
-    /// Leaf pairs whose volumes met: reported, and tested again by every query.
-    met: Vec<(u32, u32)>,
+    /// Leaf pairs whose volumes met: reported, and tested again by every query (from their
+    /// witnesses, [`TraversalFront::met_again`]).
+    met: Vec<MetPair>,
 }
 
 impl TraversalFront {
     /// Starts a query on `trees` at B's pose (`rotation`, unit, and `translation`, mm, in
     /// A's frame): pushes onto `stack` the node pairs to test, the roots when the front was
-    /// not recorded on these trees (or the pose is not finite), otherwise every met pair and
-    /// every apart pair that the motion since the front's pose may have closed. The apart
-    /// pairs it cannot have closed stay in the front with their gaps less the motion; the
-    /// traversal then records the pairs it ends at ([`TraversalFront::apart`],
-    /// [`TraversalFront::met`]).
+    /// not recorded on these trees (or the pose is not finite), otherwise every apart pair
+    /// that the motion since the front's pose may have closed. The apart pairs it cannot have
+    /// closed stay in the front with their gaps less the motion, and the met pairs stay for
+    /// [`TraversalFront::met_again`]; the traversal then records the pairs it ends at
+    /// ([`TraversalFront::apart`], [`TraversalFront::met`]).
     pub(crate) fn start(
         &mut self,
         (a, b): (&HybridTree, &HybridTree),
@@ -85,7 +99,31 @@ impl TraversalFront {
             }
             kept
         });
-        stack.append(&mut self.met);
+    }
+
+    /// Tests the met pairs again at this query's pose with `test` (the leaves' overlap test,
+    /// from the pair's witness; `None` for volumes that meet, else their gap): those that
+    /// still meet stay, reported by `report`; the others become apart pairs.
+    pub(crate) fn met_again(
+        &mut self,
+        mut test: impl FnMut(&mut MetPair) -> Option<f64>,
+        mut report: impl FnMut(&MetPair),
+    ) {
+        let Self { met, apart, .. } = self;
+        met.retain_mut(|pair| match test(pair) {
+            None => {
+                report(pair);
+                true
+            }
+            Some(gap) => {
+                apart.push(ApartPair {
+                    a: pair.a,
+                    b: pair.b,
+                    gap,
+                });
+                false
+            }
+        });
     }
 
     /// Records a node pair the traversal found apart by `gap` (mm).
@@ -93,9 +131,9 @@ impl TraversalFront {
         self.apart.push(ApartPair { a, b, gap });
     }
 
-    /// Records a leaf pair whose volumes met.
-    pub(crate) fn met(&mut self, a: u32, b: u32) {
-        self.met.push((a, b));
+    /// Records a leaf pair whose volumes met, with the witness of their overlap test.
+    pub(crate) fn met(&mut self, pair: MetPair) {
+        self.met.push(pair);
     }
 }
 

@@ -10,9 +10,10 @@ use geom_param::{ComponentId, DPose3};
 use glam::{DMat3, DQuat, DVec3};
 
 use crate::bevelled_volume::BevelledVolume;
+use crate::gjk::OverlapWitness;
 use crate::hybrid_tree::{HybridTree, Node, NodeKind};
 use crate::obb::Obb;
-use crate::traversal_front::TraversalFront;
+use crate::traversal_front::{MetPair, TraversalFront};
 
 /// Caller-owned scratch of [`overlapping_pairs`]: the stack of node pairs still to test, and
 /// the front of the last traversal ([`TraversalFront`]: where it stopped on which pair of
@@ -84,6 +85,21 @@ pub fn overlapping_pairs(
     }
     let pose = RelativePose::new(pose_ab);
     front.start((a, b), (pose.rot, pose.trans), stack);
+    front.met_again(
+        |pair| match (leaf(pair.a, nodes_a), leaf(pair.b, nodes_b)) {
+            (Some((node_a, _, va)), Some((node_b, _, vb))) => {
+                leaves_gap((node_a, va), (node_b, vb), &pose, &mut pair.witness)
+            }
+            _ => None,
+        },
+        |pair| {
+            if let (Some((_, ca, _)), Some((_, cb, _))) =
+                (leaf(pair.a, nodes_a), leaf(pair.b, nodes_b))
+            {
+                out.push((ca, cb));
+            }
+        },
+    );
     while let Some((ia, ib)) = stack.pop() {
         let (node_a, node_b) = (&nodes_a[ia as usize], &nodes_b[ib as usize]);
         if let Some(gap) = boxes_gap(node_a, node_b, &pose) {
@@ -100,13 +116,21 @@ pub fn overlapping_pairs(
                     component: cb,
                     bevelled: vb,
                 },
-            ) => match leaves_gap(node_a, va.as_deref(), node_b, vb.as_deref(), &pose) {
-                Some(gap) => front.apart(ia, ib, gap),
-                None => {
-                    front.met(ia, ib);
-                    out.push((*ca, *cb));
+            ) => {
+                let mut witness = None;
+                let (va, vb) = (va.as_deref(), vb.as_deref());
+                match leaves_gap((node_a, va), (node_b, vb), &pose, &mut witness) {
+                    Some(gap) => front.apart(ia, ib, gap),
+                    None => {
+                        front.met(MetPair {
+                            a: ia,
+                            b: ib,
+                            witness,
+                        });
+                        out.push((*ca, *cb));
+                    }
                 }
-            },
+            }
             (NodeKind::Internal { children }, NodeKind::Leaf { .. }) => {
                 stack.extend(children.iter().map(|&c| (c, ib)));
             }
@@ -125,6 +149,23 @@ pub fn overlapping_pairs(
     out.sort_unstable();
 }
 
+/// Leaf `i` of `nodes`, with its component and bevelled volume; `None` for an internal node.
+fn leaf(i: u32, nodes: &[Node]) -> Option<(&Node, ComponentId, Option<&BevelledVolume>)> {
+    match nodes.get(i as usize) {
+        Some(
+            node @ Node {
+                kind:
+                    NodeKind::Leaf {
+                        component,
+                        bevelled,
+                    },
+                ..
+            },
+        ) => Some((node, *component, bevelled.as_deref())),
+        _ => None,
+    }
+}
+
 /// `None` when the two nodes' boxes overlap (an unbounded box overlaps everything), else the
 /// gap the separating-axis test found between them (mm, a lower bound on their distance).
 fn boxes_gap(a: &Node, b: &Node, pose: &RelativePose) -> Option<f64> {
@@ -134,24 +175,25 @@ fn boxes_gap(a: &Node, b: &Node, pose: &RelativePose) -> Option<f64> {
     }
 }
 
-/// The exact test of two leaves whose boxes overlap: bevelled against bevelled, bevelled
-/// against a box leaf, or (two box leaves, or an unbounded leaf) the box test already done.
-/// `None` when they overlap, else the gap found (mm, a lower bound on their distance).
+/// The exact test of two leaves whose boxes overlap: bevelled against bevelled (from and to
+/// an overlap `witness`, see [`crate::gjk::OverlapWitness`]), bevelled against a box leaf,
+/// or (two box leaves, or an unbounded leaf) the box test already done (`None` when the boxes
+/// overlap). `None` when they overlap, else the gap found (mm, a lower bound on their
+/// distance).
 fn leaves_gap(
-    a: &Node,
-    va: Option<&BevelledVolume>,
-    b: &Node,
-    vb: Option<&BevelledVolume>,
+    (a, va): (&Node, Option<&BevelledVolume>),
+    (b, vb): (&Node, Option<&BevelledVolume>),
     pose: &RelativePose,
+    witness: &mut Option<OverlapWitness>,
 ) -> Option<f64> {
     match (va, vb, &a.bounds, &b.bounds) {
-        (Some(va), Some(vb), _, _) => va.separation(vb, pose.rot, pose.trans),
+        (Some(va), Some(vb), _, _) => va.separation_witnessed(vb, pose.rot, pose.trans, witness),
         (Some(va), None, _, Some(box_b)) => va.separation_obb(box_b, pose.rot, pose.trans),
         (None, Some(vb), Some(box_a), _) => {
             let (rot_ba, trans_ba) = pose.inverse();
             vb.separation_obb(box_a, rot_ba, trans_ba)
         }
-        _ => None,
+        _ => boxes_gap(a, b, pose),
     }
 }
 
