@@ -175,10 +175,10 @@ fn boxes_gap(a: &Node, b: &Node, pose: &RelativePose) -> Option<f64> {
     }
 }
 
-/// The exact test of two leaves whose boxes overlap: bevelled against bevelled (from and to
-/// an overlap `witness`, see [`crate::gjk::OverlapWitness`]), bevelled against a box leaf,
-/// or (two box leaves, or an unbounded leaf) the box test already done (`None` when the boxes
-/// overlap). `None` when they overlap, else the gap found (mm, a lower bound on their
+/// The exact test of two leaves: bevelled against bevelled (from and to an overlap
+/// `witness`, see [`crate::gjk::OverlapWitness`]), bevelled against a box leaf, or (two box
+/// leaves, or an unbounded leaf) the boxes' own test, which a met pair tested again from the
+/// front has not had. `None` when they overlap, else the gap found (mm, a lower bound on their
 /// distance).
 fn leaves_gap(
     (a, va): (&Node, Option<&BevelledVolume>),
