@@ -69,7 +69,7 @@ impl TraversalFront {
         if self.trees != ids || !finite {
             self.apart.clear();
             self.met.clear();
-            self.trees = finite.then_some((a.id(), b.id()));
+            self.trees = if finite { ids } else { None };
             (self.rotation, self.translation) = (rotation, translation);
             stack.push((0, 0));
             return;

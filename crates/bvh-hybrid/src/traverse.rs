@@ -87,6 +87,8 @@ pub fn overlapping_pairs(
     front.start((a, b), (pose.rot, pose.trans), stack);
     front.met_again(
         |pair| match (leaf(pair.a, nodes_a), leaf(pair.b, nodes_b)) {
+            // Two box leaves (or unbounded ones): their boxes are their volumes.
+            (Some((node_a, _, None)), Some((node_b, _, None))) => boxes_gap(node_a, node_b, &pose),
             (Some((node_a, _, va)), Some((node_b, _, vb))) => {
                 leaves_gap((node_a, va), (node_b, vb), &pose, &mut pair.witness)
             }
@@ -175,11 +177,10 @@ fn boxes_gap(a: &Node, b: &Node, pose: &RelativePose) -> Option<f64> {
     }
 }
 
-/// The exact test of two leaves: bevelled against bevelled (from and to an overlap
-/// `witness`, see [`crate::gjk::OverlapWitness`]), bevelled against a box leaf, or (two box
-/// leaves, or an unbounded leaf) the boxes' own test, which a met pair tested again from the
-/// front has not had. `None` when they overlap, else the gap found (mm, a lower bound on their
-/// distance).
+/// The exact test of two leaves whose boxes overlap: bevelled against bevelled (from and to
+/// an overlap `witness`, see [`crate::gjk::OverlapWitness`]), bevelled against a box leaf,
+/// or (two box leaves, or an unbounded leaf) the box test already done. `None` when they
+/// overlap, else the gap found (mm, a lower bound on their distance).
 fn leaves_gap(
     (a, va): (&Node, Option<&BevelledVolume>),
     (b, vb): (&Node, Option<&BevelledVolume>),
@@ -193,7 +194,7 @@ fn leaves_gap(
             let (rot_ba, trans_ba) = pose.inverse();
             vb.separation_obb(box_a, rot_ba, trans_ba)
         }
-        _ => boxes_gap(a, b, pose),
+        _ => None,
     }
 }
 

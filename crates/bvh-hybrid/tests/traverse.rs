@@ -132,29 +132,37 @@ fn swapping_objects_and_reusing_scratch_agree() {
 /// A scratch carried along a motion (the last traversal's front, whose pairs found apart are
 /// skipped while the motion since cannot have closed their gaps) gives a fresh query's pairs
 /// at every step: a ball rolling down a column of 100 bumps in steps of 0 to 1.5 mm and up to
-/// 0.2 rad, meeting and leaving bumps as it goes, and the paper objects in random walks
-/// through near-contact poses.
+/// 0.2 rad, meeting and leaving bumps as it goes (bevelled and box leaves), and the paper
+/// objects in random walks through near-contact poses.
 #[test]
 fn a_carried_front_gives_the_fresh_pairs() {
-    let phase = HybridBvh::default();
-    let column = phase.build(&bumpy_column(100, 0.05), MARGIN);
-    let ball = phase.build(&sphere(1.0, 0.05), MARGIN);
     let mut rng = Rng(19);
-    let mut scratch = TraversalScratch::default();
     let mut warm = Vec::new();
-    let (_, tip) = bump_tip(0);
-    let mut pose = DPose3::from_parts(DVec3::new(tip + 1.1, 0.0, 0.0), rng.rotation());
-    let mut met = 0;
-    for step in 0..600 {
-        let size = [0.0, 1e-3, 0.05, 0.4, 1.5][step % 5];
-        let drift = DVec3::new(rng.range(-0.2, 0.2) * size, 0.0, rng.range(0.0, size));
-        let turn = DQuat::from_axis_angle(rng.unit_vector(), rng.range(0.0, 0.2) * size.min(1.0));
-        pose = DPose3::from_parts(pose.translation + drift, (turn * pose.rotation).normalize());
-        phase.overlapping_components(&column, &ball, &pose, &mut scratch, &mut warm);
-        assert_eq!(warm, query(&phase, &column, &ball, &pose), "step {step}");
-        met += warm.len();
+    for leaf_shape in [LeafShape::Bevelled, LeafShape::Box] {
+        let phase = HybridBvh {
+            options: TreeOptions { leaf_shape },
+        };
+        let column = phase.build(&bumpy_column(100, 0.05), MARGIN);
+        let ball = phase.build(&sphere(1.0, 0.05), MARGIN);
+        let mut scratch = TraversalScratch::default();
+        let (_, tip) = bump_tip(0);
+        let mut pose = DPose3::from_parts(DVec3::new(tip + 1.1, 0.0, 0.0), rng.rotation());
+        let mut met = 0;
+        for step in 0..600 {
+            let size = [0.0, 1e-3, 0.05, 0.4, 1.5][step % 5];
+            let drift = DVec3::new(rng.range(-0.2, 0.2) * size, 0.0, rng.range(0.0, size));
+            let angle = rng.range(0.0, 0.2) * size.min(1.0);
+            let turn = DQuat::from_axis_angle(rng.unit_vector(), angle);
+            pose = DPose3::from_parts(pose.translation + drift, (turn * pose.rotation).normalize());
+            phase.overlapping_components(&column, &ball, &pose, &mut scratch, &mut warm);
+            let fresh = query(&phase, &column, &ball, &pose);
+            assert_eq!(warm, fresh, "{leaf_shape:?} leaves, step {step}");
+            met += warm.len();
+        }
+        assert!(met > 600, "the ball should mostly touch bumps: {met}");
     }
-    assert!(met > 600, "the ball should mostly touch bumps: {met}");
+
+    let phase = HybridBvh::default();
 
     let objects: Vec<_> = NAMES.iter().map(|n| paper(n, 0.1)).collect();
     let trees: Vec<_> = objects.iter().map(|o| phase.build(o, MARGIN)).collect();

@@ -61,9 +61,10 @@ impl ContainmentGrid {
                 let centre = lo + cell * DVec2::new(column as f64 + 0.5, row as f64 + 0.5);
                 let clear = distance(centre) - half_diagonal - slack;
                 let value = if clear > 0.0 && clear.is_finite() {
-                    // `as` rounds to nearest; scaled down first, the result stays below.
+                    // `as` rounds to nearest (and overflows to ∞); scaled down and capped
+                    // first, the result stays below.
                     #[allow(clippy::cast_possible_truncation)]
-                    let down = (clear * (1.0 - 1e-6)) as f32;
+                    let down = (clear * (1.0 - 1e-6)).min(f64::from(f32::MAX)) as f32;
                     if inside(centre) { down } else { -down }
                 } else {
                     0.0
