@@ -11,14 +11,17 @@
 //!   contacts, and a gap of one unit in the last place is reported as [`TriangleContact::Disjoint`].
 //!   [`triangles_intersect`] makes exactly the same decisions as [`intersect_triangles`].
 //! * **Points are rounded, not exact.** A returned point is an input vertex, bit for bit, when the
-//!   true point is one. Otherwise it is interpolated along an edge (in f64) at the zero of two
-//!   plane-side or line-side determinants evaluated in double-double arithmetic (relative error
-//!   about `1e-32` times their condition number), so it lies within a few units in the last
-//!   place (relative to the coordinates) of the true point, also for planes `1e-12` or even
-//!   `1e-15` rad from parallel, where plain f64 determinants would misplace it by a relative
-//!   `1e-4` or worse. Every point is finally clamped into the intersection of the two bounding
-//!   boxes, which contains the true common set. The order of a coplanar overlap polygon is
-//!   decided in f64 (by angle around its centroid).
+//!   true point is one. Otherwise it is interpolated along an edge `[a, b]` (in f64) at the zero
+//!   of two plane-side or line-side determinants whose magnitudes carry a relative error of at
+//!   most 2^-40: each is evaluated in plain f64 when Shewchuk's error bound certifies that,
+//!   and otherwise in double-double arithmetic (relative error about `1e-32` times its
+//!   condition number). So a point lies within about 2e-12 `|b - a|` plus a few units in the
+//!   last place (relative to the coordinates) of the true point, also for planes `1e-12` or
+//!   even `1e-15` rad from parallel, where plain f64 determinants would misplace it by a
+//!   relative `1e-4` or worse (the bound sends those to double-double). Every point is
+//!   finally clamped into the intersection of the two bounding boxes, which contains the true
+//!   common set. The order of a coplanar overlap polygon is decided in f64 (by angle around its
+//!   centroid).
 //! * **Scale.** The inputs are first scaled by a power of two (exactly) so that their largest
 //!   coordinate magnitude `M` lies in `[1, 2)`, and the results scaled back, so any finite input is
 //!   handled without overflow. Shewchuk's predicates are exact as long as no intermediate product
@@ -258,10 +261,11 @@ fn side(t: &[DVec3; 3], p: DVec3) -> f64 {
     -orient3d(c3(t[0]), c3(t[1]), c3(t[2]), c3(p))
 }
 
-/// Like [`side`], evaluated in double-double: relative error about `1e-30` times the condition
-/// number, used only for the magnitude once the exact sign is known.
-fn side_dd(t: &[DVec3; 3], p: DVec3) -> f64 {
-    -orient3d_dd(t[0], t[1], t[2], p)
+/// The magnitude of [`side`] (used only once its exact sign is known), with relative error at
+/// most [`MAGNITUDE_RELATIVE_ERROR`] (about `1e-30` times the condition number where the plain
+/// evaluation cannot promise that).
+fn side_magnitude(t: &[DVec3; 3], p: DVec3) -> f64 {
+    orient3d_f64(t[0], t[1], t[2], p).map_or_else(|| -orient3d_dd(t[0], t[1], t[2], p), |v| -v)
 }
 
 /// Sides of the vertices of `pts` relative to the plane of `t`.
@@ -384,8 +388,8 @@ impl Crossing {
         } else if self.pos_side == 0.0 {
             self.pos
         } else {
-            let fp = refine(self.pos_side, side_dd(plane, self.pos));
-            let fn_ = refine(self.neg_side, side_dd(plane, self.neg));
+            let fp = refine(self.pos_side, side_magnitude(plane, self.pos));
+            let fn_ = refine(self.neg_side, side_magnitude(plane, self.neg));
             lerp_zero(self.pos, self.neg, fp, fn_)
         }
     }
@@ -644,8 +648,8 @@ fn proper_crossing(p: DVec3, q: DVec3, r: DVec3, s: DVec3, axis: usize) -> Optio
         return None;
     }
     let (pr, ps) = (proj(r, axis), proj(s, axis));
-    let fp = refine(op, orient2d_dd(pr, ps, proj(p, axis)));
-    let fq = refine(oq, orient2d_dd(pr, ps, proj(q, axis)));
+    let fp = refine(op, orient2d_magnitude(pr, ps, proj(p, axis)));
+    let fq = refine(oq, orient2d_magnitude(pr, ps, proj(q, axis)));
     Some(lerp_zero(p, q, fp, fq))
 }
 
@@ -711,7 +715,12 @@ fn segment_triangle(p: DVec3, q: DVec3, t: &[DVec3; 3]) -> TriangleContact {
     } else if sq == 0.0 {
         q
     } else {
-        lerp_zero(p, q, refine(sp, side_dd(t, p)), refine(sq, side_dd(t, q)))
+        lerp_zero(
+            p,
+            q,
+            refine(sp, side_magnitude(t, p)),
+            refine(sq, side_magnitude(t, q)),
+        )
     };
     point_contact(x)
 }
@@ -789,7 +798,61 @@ fn segment_segment(p: DVec3, q: DVec3, r: DVec3, s: DVec3) -> TriangleContact {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Double-double evaluation of the predicates' magnitudes (for constructing points).
+// The predicates' magnitudes (for constructing points): plain f64 where its error bound allows,
+// else double-double.
+
+/// Largest relative error of a determinant's magnitude taken from its plain f64 evaluation
+/// (2^-40): beyond it the determinant is evaluated in double-double.
+///
+/// A crossing point is interpolated at the zero of two such magnitudes, so its offset along its
+/// edge `[a, b]` errs by at most about twice this times `|b - a|` (1.8e-12 x the edge length),
+/// besides the interpolation's own rounding (a few units in the last place).
+const MAGNITUDE_RELATIVE_ERROR: f64 = 1.0 / 1_099_511_627_776.0;
+
+/// Shewchuk's error bound factor for orient3d's plain f64 evaluation: |computed - exact| <=
+/// `O3D_ERRBOUND` x the permanent (the same sum with every product's absolute value).
+const O3D_ERRBOUND: f64 = (7.0 + 56.0 * HALF_EPSILON) * HALF_EPSILON;
+/// Shewchuk's error bound factor for orient2d's plain f64 evaluation.
+const O2D_ERRBOUND: f64 = (3.0 + 16.0 * HALF_EPSILON) * HALF_EPSILON;
+/// The unit roundoff 2^-53 (Shewchuk's epsilon).
+const HALF_EPSILON: f64 = f64::EPSILON / 2.0;
+
+/// `robust::orient3d(a, b, c, d)` in plain f64 (the same formula and sign convention), when
+/// Shewchuk's bound certifies its relative error within [`MAGNITUDE_RELATIVE_ERROR`]; `None`
+/// otherwise (or for a non-finite value).
+fn orient3d_f64(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Option<f64> {
+    let (ad, bd, cd) = (a - d, b - d, c - d);
+    let (bc, ca, ab) = (
+        bd.x * cd.y - cd.x * bd.y,
+        cd.x * ad.y - ad.x * cd.y,
+        ad.x * bd.y - bd.x * ad.y,
+    );
+    let det = ad.z * bc + bd.z * ca + cd.z * ab;
+    let permanent = ad.z.abs() * ((bd.x * cd.y).abs() + (cd.x * bd.y).abs())
+        + bd.z.abs() * ((cd.x * ad.y).abs() + (ad.x * cd.y).abs())
+        + cd.z.abs() * ((ad.x * bd.y).abs() + (bd.x * ad.y).abs());
+    certified(det, O3D_ERRBOUND * permanent)
+}
+
+/// `robust::orient2d(a, b, c)` in plain f64, as [`orient3d_f64`].
+fn orient2d_f64(a: Coord<f64>, b: Coord<f64>, c: Coord<f64>) -> Option<f64> {
+    let (left, right) = ((a.x - c.x) * (b.y - c.y), (a.y - c.y) * (b.x - c.x));
+    certified(left - right, O2D_ERRBOUND * (left.abs() + right.abs()))
+}
+
+/// `value` when its absolute error bound `error` is within [`MAGNITUDE_RELATIVE_ERROR`] of it.
+/// (Below 1e-250 in magnitude, where a product may have underflowed and the bound no longer
+/// holds, `None`: the inputs are scaled so that their largest coordinate is in [1, 2).)
+fn certified(value: f64, error: f64) -> Option<f64> {
+    (error.is_finite() && value.abs() >= 1e-250 && error <= MAGNITUDE_RELATIVE_ERROR * value.abs())
+        .then_some(value)
+}
+
+/// The magnitude of `robust::orient2d(a, b, c)` (used once its exact sign is known), with
+/// relative error at most [`MAGNITUDE_RELATIVE_ERROR`].
+fn orient2d_magnitude(a: Coord<f64>, b: Coord<f64>, c: Coord<f64>) -> f64 {
+    orient2d_f64(a, b, c).unwrap_or_else(|| orient2d_dd(a, b, c))
+}
 
 /// 2^27 + 1, Dekker's splitter for f64.
 const SPLITTER: f64 = 134_217_729.0;
@@ -882,6 +945,56 @@ fn orient2d_dd(a: Coord<f64>, b: Coord<f64>, c: Coord<f64>) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A plain f64 magnitude is taken only where it is within its promised relative error of
+    /// the double-double one, and close to a plane (where it is not) double-double decides.
+    #[test]
+    fn plain_magnitudes_are_taken_only_within_their_bound() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let (mut plain, mut doubled) = (0, 0);
+        for k in 0..40_000 {
+            let a = DVec3::new(next(), next(), next());
+            let b = DVec3::new(next(), next(), next());
+            let c = DVec3::new(next(), next(), next());
+            // Half the points lie within 10^-(k mod 16) of the plane of (a, b, c).
+            let off = 10f64.powi(-(k % 16));
+            let d = if k % 2 == 0 {
+                DVec3::new(next(), next(), next())
+            } else {
+                a + (b - a) * next() + (c - a) * next() + DVec3::splat(next() * off)
+            };
+            let dd = orient3d_dd(a, b, c, d);
+            match orient3d_f64(a, b, c, d) {
+                Some(v) => {
+                    plain += 1;
+                    assert!(
+                        (v - dd).abs() <= MAGNITUDE_RELATIVE_ERROR * dd.abs(),
+                        "{v} vs {dd}"
+                    );
+                }
+                None => doubled += 1,
+            }
+            let (pa, pb, pc) = (proj(a, 2), proj(b, 2), proj(d, 2));
+            let dd2 = orient2d_dd(pa, pb, pc);
+            if let Some(v) = orient2d_f64(pa, pb, pc) {
+                assert!(
+                    (v - dd2).abs() <= MAGNITUDE_RELATIVE_ERROR * dd2.abs(),
+                    "{v} vs {dd2}"
+                );
+            }
+        }
+        // Both evaluations are exercised: most points are clear of the plane.
+        assert!(
+            plain > 20_000 && doubled > 2_000,
+            "{plain} plain, {doubled} doubled"
+        );
+    }
 
     /// The double-double determinants agree in sign with the exact predicates on nearly
     /// degenerate inputs, and are accurate where plain f64 is not.
