@@ -11,6 +11,7 @@ use crate::mesh_phase::{MeshOutput, MeshVerdict};
 use crate::pair_key::PairKey;
 use crate::query_side::Side;
 use crate::triangles::mesh_intersections::TriangleBuffers;
+use crate::triangles::plane_filter::planes_apart;
 use crate::triangles::triangle_distance::{
     TrianglePoint, closest_between_triangles, closest_on_triangle,
 };
@@ -140,7 +141,10 @@ pub(crate) fn cone_path(
     );
     scratch.candidates.sort_unstable();
     scratch.candidates.dedup();
-    let meshes_intersect = scratch.report_intersecting((side_a, side_b), pose_ab, out);
+    // The leaf pairs' pieces overlap, so their triangles mostly meet: only the planes' filter
+    // pays for itself ([`planes_apart`]).
+    let meshes_intersect =
+        scratch.report_intersecting((side_a, side_b), pose_ab, planes_apart, out);
 
     // 2. Seed candidates.
     let ConeScratch {

@@ -7,6 +7,7 @@ use crate::mesh_phase::{MeshOutput, MeshVerdict, RegionProbes};
 use crate::query_side::Side;
 use crate::triangles::collision_regions::{group_regions, region_centres, region_extremes};
 use crate::triangles::mesh_intersections::{TriangleBuffers, intersect_candidates};
+use crate::triangles::plane_filter::clearly_apart;
 use geom_param::{ComponentKind, DPose3, Seed};
 use glam::DVec3;
 
@@ -49,7 +50,8 @@ pub(crate) fn triangle_path(
     // One seed per region, for the caller to confirm the penetration on the exact surfaces.
     // Then go on to the proxy pass: other contacts of the pair still need their seeds when
     // Stage 3 finds the overlap to be within the chordal errors.
-    let meshes_intersect = scratch.report_intersecting((side_a, side_b), pose_ab, out);
+    let meshes_intersect =
+        scratch.report_intersecting((side_a, side_b), pose_ab, clearly_apart, out);
 
     // 2. The proxy of one side against the other's mesh: the concave side, A when both or
     // neither are.
@@ -76,7 +78,7 @@ pub(crate) fn triangle_path(
         (positions_a, &ma.triangles),
         (positions_b, &mb.triangles),
         pose_ab,
-        &scratch.candidates,
+        (&scratch.candidates, clearly_apart),
         &mut scratch.segments,
         &mut out.stats,
     );

@@ -7,7 +7,8 @@ use crate::query_side::Side;
 use crate::triangles::collision_regions::{
     IntersectionSegment, RegionScratch, group_regions, region_centres,
 };
-use crate::triangles::plane_filter::clearly_apart;
+#[cfg(doc)]
+use crate::triangles::plane_filter::{clearly_apart, planes_apart};
 use crate::triangles::triangle_intersection::{TriangleContact, intersect_triangles};
 use geom_param::{DPose3, Seed};
 use glam::DVec3;
@@ -32,12 +33,14 @@ pub(crate) struct TriangleBuffers {
 
 impl TriangleBuffers {
     /// The exact test of every pair in `candidates` (A's and B's triangles of the two sides'
-    /// meshes, B posed by `pose_ab`), and what both triangle paths report of the pairs that
+    /// meshes, B posed by `pose_ab`) not dropped by `apart` (a floating-point filter that never
+    /// drops a pair that meets), and what both triangle paths report of the pairs that
     /// intersect ([`report_mesh_intersections`]). Returns whether any did.
     pub(crate) fn report_intersecting(
         &mut self,
         (side_a, side_b): (&Side<'_>, &Side<'_>),
         pose_ab: &DPose3,
+        apart: ApartFilter,
         out: &mut MeshOutput,
     ) -> bool {
         let (ma, mb) = (side_a.mesh, side_b.mesh);
@@ -45,7 +48,7 @@ impl TriangleBuffers {
             (&ma.positions, &ma.triangles),
             (&mb.positions, &mb.triangles),
             pose_ab,
-            &self.candidates,
+            (&self.candidates, apart),
             &mut self.segments,
             &mut out.stats,
         );
@@ -62,13 +65,18 @@ impl TriangleBuffers {
     }
 }
 
+/// A floating-point filter in front of the exact triangle test: true only for two triangles the
+/// exact test would find disjoint ([`clearly_apart`], [`planes_apart`]).
+pub(crate) type ApartFilter = fn(&[DVec3; 3], &[DVec3; 3]) -> bool;
+
 /// Runs the exact triangle test on every candidate pair (B's triangles moved into A's frame)
-/// and collects the intersection segments; a coplanar overlap contributes its polygon's edges.
+/// that the filter `apart` leaves, and collects the intersection segments; a coplanar overlap
+/// contributes its polygon's edges.
 pub(crate) fn intersect_candidates(
     (positions_a, triangles_a): (&[DVec3], &[[u32; 3]]),
     (positions_b, triangles_b): (&[DVec3], &[[u32; 3]]),
     pose_ab: &DPose3,
-    candidates: &[(u32, u32)],
+    (candidates, apart): (&[(u32, u32)], ApartFilter),
     segments: &mut Vec<IntersectionSegment>,
     stats: &mut MeshStats,
 ) {
@@ -82,10 +90,10 @@ pub(crate) fn intersect_candidates(
         };
         let t2 = t2.map(|p| *pose_ab * p);
         stats.triangle_pairs_tested = stats.triangle_pairs_tested.saturating_add(1);
-        // A floating-point plane filter, then the exact test itself: the candidates the filter
+        // The floating-point filter, then the exact test itself: the candidates the filter
         // leaves mostly meet (a boolean exact test first, the same decision, only doubled their
         // cost).
-        if clearly_apart(&t1, &t2) {
+        if apart(&t1, &t2) {
             continue;
         }
         let segment = |start, end| IntersectionSegment {

@@ -15,7 +15,18 @@ use glam::DVec3;
 /// only means "ask the exact test". Non-finite input gives `false`.
 #[must_use]
 pub fn clearly_apart(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
-    one_side(t1, t2) || one_side(t2, t1) || edge_axes_apart(t1, t2)
+    planes_apart(t1, t2) || edge_axes_apart(t1, t2)
+}
+
+/// The first half of [`clearly_apart`]: true when one triangle lies strictly on one side of the
+/// other's plane, by far more than the rounding (the same margin).
+///
+/// For candidates that mostly meet (a normal-cone leaf pair whose pieces' volumes overlap) the
+/// nine edge axes cost more than the exact tests they spare: on a pencil through a bowl's wall
+/// they were 12% of the query.
+#[must_use]
+pub fn planes_apart(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
+    one_side(t1, t2) || one_side(t2, t1)
 }
 
 /// Whether the triangles' projections onto some `e1 × e2` (e1 an edge of `t1`, e2 of `t2`) are
