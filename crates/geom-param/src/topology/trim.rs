@@ -12,8 +12,9 @@
 //! boundary: within the polyline's flatness of an entry, the side of the exact curve's tangent at
 //! the nearest exact point decides. Nearest points are found on the polyline and then polished by
 //! Newton's method on |c(t) - (u, v)|² over the entry's exact p-curve. Both scans skip runs of
-//! [`SEGMENTS_PER_BOX`] segments by their boxes: a run farther than the best point so far, or
-//! not spanning the ray's height, holds no segment that would count.
+//! [`SEGMENTS_PER_BOX`] segments by their boxes, and groups of [`BOXES_PER_GROUP`] runs by
+//! theirs: a run or group farther than the best point so far, or not spanning the ray's height,
+//! holds no segment that would count.
 
 use crate::curves::curve::ParamRange;
 use crate::curves::curve2::Curve2;
@@ -33,6 +34,12 @@ const POLISH_STEPS: usize = 8;
 /// Newton step on it, and a circle's polyline has about 160 segments at [`FLATNESS`]; scanning
 /// them all was a quarter of a loft-on-tube query (its tube's annulus faces).
 pub const SEGMENTS_PER_BOX: usize = 8;
+/// Consecutive run boxes under one box of [`TrimEntry`]'s third level.
+///
+/// Why: a circle's polyline (256 segments at [`FLATNESS`]) has 32 runs, and a scan near the
+/// boundary tested every run's box: most of a loft-on-tube query's nearest-point searches on
+/// the tube's annulus and cylinder went to those tests.
+pub const BOXES_PER_GROUP: usize = 8;
 
 /// One edge of a loop: the edge, its p-curve on this face and the direction the loop takes it.
 #[derive(Debug)]
@@ -50,6 +57,10 @@ pub struct TrimEntry {
     /// The boxes of runs of [`SEGMENTS_PER_BOX`] segments: box k holds the points
     /// k · [`SEGMENTS_PER_BOX`] ..= (k + 1) · [`SEGMENTS_PER_BOX`] (the last run fewer).
     boxes: Vec<(DVec2, DVec2)>,
+    /// The boxes of groups of [`BOXES_PER_GROUP`] runs: group g holds runs
+    /// g · [`BOXES_PER_GROUP`] .. (g + 1) · [`BOXES_PER_GROUP`] (the last fewer). A single
+    /// group's box is the entry's `bounds`, which the scans test first, so they skip its test.
+    groups: Vec<(DVec2, DVec2)>,
 }
 
 impl TrimEntry {
@@ -63,6 +74,7 @@ impl TrimEntry {
             polyline: Vec::new(),
             bounds: (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
             boxes: Vec::new(),
+            groups: Vec::new(),
         }
     }
 
@@ -114,6 +126,7 @@ impl TrimLoop {
             entry.boxes = (0..runs)
                 .map(|k| box_of(&entry.polyline[run_points(k, entry.polyline.len())]))
                 .collect();
+            entry.groups = entry.boxes.chunks(BOXES_PER_GROUP).map(union_of).collect();
         }
         Self { entries }
     }
@@ -176,6 +189,19 @@ fn box_of(points: &[(f64, DVec2)]) -> (DVec2, DVec2) {
         hi = hi.max(p);
     }
     (lo, hi)
+}
+
+/// The smallest box holding every box of `boxes` (empty: +∞, −∞).
+fn union_of(boxes: &[(DVec2, DVec2)]) -> (DVec2, DVec2) {
+    let empty = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+    boxes
+        .iter()
+        .fold(empty, |(lo, hi), b| (lo.min(b.0), hi.max(b.1)))
+}
+
+/// The runs of group `g` of an entry with `runs` runs ([`TrimEntry`]'s groups).
+fn group_runs(g: usize, runs: usize) -> std::ops::Range<usize> {
+    g * BOXES_PER_GROUP..((g + 1) * BOXES_PER_GROUP).min(runs)
 }
 
 /// The points of run `k` of a polyline of `n` points ([`TrimEntry`]'s boxes).
@@ -306,10 +332,22 @@ impl Trim {
                 if off_height(entry.bounds, uv.y) {
                     continue;
                 }
-                for (k, &run) in entry.boxes.iter().enumerate() {
-                    if !off_height(run, uv.y) {
-                        w += run_segments(entry, k).map(crossing).sum::<i32>();
+                let mut count = |runs: std::ops::Range<usize>| {
+                    for k in runs {
+                        if !off_height(entry.boxes[k], uv.y) {
+                            w += run_segments(entry, k).map(crossing).sum::<i32>();
+                        }
                     }
+                };
+                // A lone group's box is the entry's, just tested.
+                if entry.groups.len() > 1 {
+                    for (g, &group) in entry.groups.iter().enumerate() {
+                        if !off_height(group, uv.y) {
+                            count(group_runs(g, entry.boxes.len()));
+                        }
+                    }
+                } else {
+                    count(0..entry.boxes.len());
                 }
             }
             w += l.closing_segment().map_or(0, crossing);
@@ -416,11 +454,24 @@ impl Trim {
                 if nearest.is_some_and(|(g, _, _)| gap(e.bounds) >= g) {
                     continue;
                 }
-                for (k, &run) in e.boxes.iter().enumerate() {
-                    let g = gap(run);
-                    if nearest.is_none_or(|(best, _, _)| g < best) {
-                        nearest = Some((g, e, k));
+                let take = |runs: std::ops::Range<usize>, nearest: &mut Option<_>| {
+                    for k in runs {
+                        let g = gap(e.boxes[k]);
+                        if nearest.is_none_or(|(best, _, _)| g < best) {
+                            *nearest = Some((g, e, k));
+                        }
                     }
+                };
+                // A lone group's box is the entry's, just tested.
+                if e.groups.len() > 1 {
+                    for (group_index, &group) in e.groups.iter().enumerate() {
+                        // A run's gap is at least its group's: none in it would be taken.
+                        if nearest.is_none_or(|(g, _, _)| gap(group) < g) {
+                            take(group_runs(group_index, e.boxes.len()), &mut nearest);
+                        }
+                    }
+                } else {
+                    take(0..e.boxes.len(), &mut nearest);
                 }
             }
         }
@@ -499,24 +550,17 @@ impl Trim {
                 if farther(e.bounds, uv, bound(&best)) {
                     continue;
                 }
-                for (k, &run) in e.boxes.iter().enumerate() {
-                    if farther(run, uv, bound(&best)) {
-                        continue;
-                    }
-                    for w in e.polyline[run_points(k, e.polyline.len())].windows(2) {
-                        let ((t0, a), (t1, b)) = (w[0], w[1]);
-                        let (s, p) = closest_on_segment(uv, (a, b));
-                        let d = p.distance(uv);
-                        if best.is_none_or(|bst| d < bst.distance) {
-                            best = Some(TrimNearest {
-                                loop_index: li,
-                                index: ei,
-                                t: t0 + s * (t1 - t0),
-                                point: p,
-                                distance: d,
-                            });
+                // A lone group's box is the entry's, just tested.
+                if e.groups.len() > 1 {
+                    for (g, &group) in e.groups.iter().enumerate() {
+                        // Every segment of the group lies in its box, as a run's in the run's.
+                        if !farther(group, uv, bound(&best)) {
+                            let runs = group_runs(g, e.boxes.len());
+                            nearest_on_runs(e, runs, uv, limit, (li, ei), &mut best);
                         }
                     }
+                } else {
+                    nearest_on_runs(e, 0..e.boxes.len(), uv, limit, (li, ei), &mut best);
                 }
             }
         }
@@ -532,6 +576,40 @@ impl Trim {
             .fold(f64::INFINITY, f64::min);
         self.polyline_nearest(uv, self.nearest_bound(uv))
             .map_or(closing, |n| n.distance.min(closing))
+    }
+}
+
+/// [`Trim::polyline_nearest`]'s scan of the `runs` of `e` (entry `index` of loop `loop_index`):
+/// `best` becomes a nearer point of theirs, skipping the runs whose box is farther than `limit`
+/// or `best` ([`farther`]).
+#[inline(always)]
+fn nearest_on_runs(
+    e: &TrimEntry,
+    runs: std::ops::Range<usize>,
+    uv: DVec2,
+    limit: f64,
+    (loop_index, index): (usize, usize),
+    best: &mut Option<TrimNearest>,
+) {
+    for k in runs {
+        let bound = best.as_ref().map_or(limit, |b| b.distance.min(limit));
+        if farther(e.boxes[k], uv, bound) {
+            continue;
+        }
+        for w in e.polyline[run_points(k, e.polyline.len())].windows(2) {
+            let ((t0, a), (t1, b)) = (w[0], w[1]);
+            let (s, p) = closest_on_segment(uv, (a, b));
+            let d = p.distance(uv);
+            if best.is_none_or(|bst| d < bst.distance) {
+                *best = Some(TrimNearest {
+                    loop_index,
+                    index,
+                    t: t0 + s * (t1 - t0),
+                    point: p,
+                    distance: d,
+                });
+            }
+        }
     }
 }
 
@@ -706,6 +784,55 @@ mod tests {
         }
         // Most of the plate lies clear of its boundary by more than a cell.
         assert!(answered > 4 * 301 * 301 / 2, "{answered}");
+    }
+
+    /// The scans that skip groups and runs by their boxes find what a scan of every segment
+    /// finds: the nearest polyline distance, the bound's run, and the winding number, around a
+    /// plate with a hole that is one circle (its entry has several groups of runs).
+    #[test]
+    fn grouped_scans_match_every_segment() {
+        let mut trim = plate(1, &[]);
+        let circle = Circle2 {
+            center: DVec2::new(4.0, 5.0),
+            radius: 2.5,
+            phase: 0.0,
+            sense: -1.0,
+            range: range(0.0, std::f64::consts::TAU),
+        };
+        trim.loops.push(TrimLoop::new(vec![TrimEntry::new(
+            EdgeId(99),
+            Box::new(circle),
+            false,
+        )]));
+        let trim = Trim::new(trim.loops, &[range(-5.0, 15.0), range(-5.0, 15.0)]);
+        assert!(trim.loops[1].entries[0].groups.len() > 2);
+        for i in 0..=120 {
+            for j in 0..=120 {
+                let p = DVec2::new(
+                    -1.0 + 12.0 * f64::from(i) / 120.0,
+                    -1.0 + 12.0 * f64::from(j) / 120.0,
+                );
+                let segments = trim.loops.iter().flat_map(TrimLoop::segments);
+                let crossings: i32 = segments
+                    .map(|(a, b)| {
+                        if a.y <= p.y {
+                            i32::from(b.y > p.y && (b - a).perp_dot(p - a) > 0.0)
+                        } else {
+                            -i32::from(b.y <= p.y && (b - a).perp_dot(p - a) < 0.0)
+                        }
+                    })
+                    .sum();
+                assert_eq!(trim.winding(p), crossings, "{p}");
+                let open = trim.loops.iter().flat_map(|l| &l.entries);
+                let brute = open
+                    .flat_map(|e| e.polyline().windows(2))
+                    .map(|w| super::closest_on_segment(p, (w[0].1, w[1].1)).1.distance(p))
+                    .fold(f64::INFINITY, f64::min);
+                let bound = trim.nearest_bound(p);
+                let near = trim.polyline_nearest(p, bound).expect("within its bound");
+                assert_eq!(near.distance, brute, "{p}");
+            }
+        }
     }
 
     /// The nearest boundary point and containment agree with the closed forms (distance to
