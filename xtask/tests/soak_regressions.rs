@@ -867,9 +867,9 @@ fn through_material_pose() -> DPose3 {
 struct Meshes<'a>(&'a PreparedObject);
 
 impl NearestBoundary for Meshes<'_> {
-    fn nearest_boundary(&self, local_point: DVec3) -> Option<BoundaryDistance> {
+    fn nearest_boundary(&self, local_point: DVec3, reach: f64) -> Option<BoundaryDistance> {
         MeshNarrowphase::default()
-            .nearest_boundary_point(&self.0.model, &self.0.mesh, local_point)
+            .nearest_boundary_point(&self.0.model, &self.0.mesh, local_point, reach)
             .map(|n| BoundaryDistance {
                 point: n.point,
                 distance: n.distance,
@@ -965,7 +965,7 @@ fn a_witness_through_the_material_is_no_penetration() {
     // Independent of the check: A's point has B's boundary (its mesh, within the chordal
     // error) 95 mm away, nearer than the pair's 127.5 mm.
     let near = Meshes(g)
-        .nearest_boundary(pose_b.inverse() * through.point_a)
+        .nearest_boundary(pose_b.inverse() * through.point_a, f64::INFINITY)
         .expect("finite point");
     assert!(near.distance + near.error_bound < 120.0, "{near:?}");
     match refiner.check_witness(&pose_b, &through, &Meshes(g), &Meshes(g)) {

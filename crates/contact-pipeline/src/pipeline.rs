@@ -473,9 +473,9 @@ impl<'p, B: BroadPhase, M: MeshPhase> MeshBoundary<'p, B, M> {
 }
 
 impl<B: BroadPhase, M: MeshPhase> NearestBoundary for MeshBoundary<'_, B, M> {
-    fn nearest_boundary(&self, local_point: DVec3) -> Option<BoundaryDistance> {
+    fn nearest_boundary(&self, local_point: DVec3, reach: f64) -> Option<BoundaryDistance> {
         self.phase
-            .nearest_boundary_point(&self.object.model, &self.object.mesh, local_point)
+            .nearest_boundary_point(&self.object.model, &self.object.mesh, local_point, reach)
             .map(|n| BoundaryDistance {
                 point: n.point,
                 distance: n.distance,

@@ -94,8 +94,9 @@ impl MeshPhase for MeshNarrowphase {
         object: &ObjectModel,
         prepared: &PreparedObject,
         local_point: DVec3,
+        reach: f64,
     ) -> Option<MeshBoundaryPoint> {
-        nearest_boundary_point(object, prepared, local_point)
+        nearest_boundary_point(object, prepared, local_point, reach)
     }
 
     /// Each component's triangle tree lists its triangles within reach ([`faces_near`]).

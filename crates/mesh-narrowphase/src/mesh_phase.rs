@@ -198,8 +198,10 @@ pub trait MeshPhase {
     /// The point of the object's meshes (all components: its whole boundary) nearest to
     /// `local_point` (the object's own frame, mm), with a bound on how far the exact boundary's
     /// distance can differ ([`MeshBoundaryPoint::error_bound`]: the largest chordal error of
-    /// the components, a Hausdorff bound). `None` for a non-finite point or an object without
-    /// triangles.
+    /// the components, a Hausdorff bound). Only points within `reach` + that bound are sought
+    /// (`reach` in mm, +∞ for all): where the meshes have none, the answer has `distance` =
+    /// +∞, `point` = `local_point` and no component. `None` for a non-finite point or an
+    /// object without triangles.
     ///
     /// Not used by [`Self::query`]: the pipeline hands it to Stage 3, which needs the whole
     /// boundary to tell a penetration witness from a critical pair measured through the
@@ -211,6 +213,7 @@ pub trait MeshPhase {
         object: &ObjectModel,
         prepared: &Self::Prepared,
         local_point: DVec3,
+        reach: f64,
     ) -> Option<MeshBoundaryPoint>;
 
     /// Every face of the object whose mesh comes within `radius` (mm) of `local_point` (the
@@ -233,12 +236,12 @@ pub trait MeshPhase {
 /// What [`MeshPhase::nearest_boundary_point`] returns (the object's frame, mm).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MeshBoundaryPoint {
-    /// The nearest mesh point.
+    /// The nearest mesh point (the query point when none is within reach).
     pub point: DVec3,
-    /// Its distance to the query point.
+    /// Its distance to the query point (+∞ when none is within reach).
     pub distance: f64,
-    /// The component whose mesh holds it.
-    pub component: ComponentId,
+    /// The component whose mesh holds it (`None` when none is within reach).
+    pub component: Option<ComponentId>,
     /// Bound on |exact boundary distance − `distance`| (mm): the largest chordal error of the
     /// object's component meshes.
     pub error_bound: f64,

@@ -10,11 +10,17 @@ use crate::prepared_object::PreparedObject;
 use geom_param::{ComponentId, FeatureLocation, ObjectModel};
 use glam::DVec3;
 
-/// The point of `object`'s component meshes nearest to `local_point` (object frame, mm): each
-/// component's triangle tree answers in turn, bounded by the best distance so far. The error
-/// bound is the largest chordal error of the components (each mesh is within its chordal error
-/// of its surface in the Hausdorff sense). `None` for a non-finite point, prepared data of
-/// another object, or an object without triangles.
+/// The point of `object`'s component meshes nearest to `local_point` (object frame, mm), when
+/// one lies within `reach` + the error bound: each component's triangle tree answers in turn,
+/// bounded by that and then by the best distance so far. The error bound is the largest
+/// chordal error of the components (each mesh is within its chordal error of its surface in
+/// the Hausdorff sense). When no mesh point is that near, the answer has distance +∞ (see
+/// [`MeshBoundaryPoint`]). `None` for a non-finite point, prepared data of another object, or
+/// an object without triangles.
+///
+/// Why the reach: a penetration witness's check asks only whether a boundary comes nearer
+/// than the depth, and a search bounded by it skips the subtrees farther off (unbounded, the
+/// check was a sixth of a pencil-through-bowl query).
 ///
 /// Kept out of line: it runs only for penetrating pairs, and must not change how the hot
 /// query code around it is compiled.
@@ -24,8 +30,12 @@ pub fn nearest_boundary_point(
     object: &ObjectModel,
     prepared: &PreparedObject,
     local_point: DVec3,
+    reach: f64,
 ) -> Option<MeshBoundaryPoint> {
-    if !local_point.is_finite() || prepared.components.len() != object.meshes.len() {
+    if !local_point.is_finite()
+        || prepared.components.len() != object.meshes.len()
+        || object.meshes.iter().all(|m| m.triangles.is_empty())
+    {
         return None;
     }
     let error_bound = object
@@ -34,8 +44,10 @@ pub fn nearest_boundary_point(
         .map(|m| m.chordal_error)
         .fold(0.0, f64::max);
     let mut best: Option<MeshBoundaryPoint> = None;
+    // (A NaN reach seeks everything, as +∞ does: `min` drops the NaN.)
+    let sought = (reach + error_bound).min(f64::MAX);
     for (i, (component, mesh)) in prepared.components.iter().zip(&object.meshes).enumerate() {
-        let reach = best.map_or(f64::MAX, |b| b.distance);
+        let reach = best.map_or(sought, |b| b.distance);
         let found = component
             .bvh
             .nearest(&mesh.positions, &mesh.triangles, local_point, reach);
@@ -43,12 +55,17 @@ pub fn nearest_boundary_point(
             best = Some(MeshBoundaryPoint {
                 point: n.point,
                 distance: n.distance,
-                component: ComponentId(u32::try_from(i).ok()?),
+                component: Some(ComponentId(u32::try_from(i).ok()?)),
                 error_bound,
             });
         }
     }
-    best
+    Some(best.unwrap_or(MeshBoundaryPoint {
+        point: local_point,
+        distance: f64::INFINITY,
+        component: None,
+        error_bound,
+    }))
 }
 
 /// Every face whose mesh comes within `radius` (mm) of `local_point` (object frame), each once,

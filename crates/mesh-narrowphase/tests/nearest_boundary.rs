@@ -41,8 +41,21 @@ fn nearest_boundary_point_matches_the_closed_form_within_the_chordal_error() {
             rng.range(-5.0, 55.0),
         );
         let found = phase
-            .nearest_boundary_point(&bowl.object, &bowl.prepared, q)
+            .nearest_boundary_point(&bowl.object, &bowl.prepared, q, f64::INFINITY)
             .expect("a finite point has a nearest mesh point");
+        // Bounded by a reach, the search finds the same point when it lies within the reach
+        // and the error bound, and says that none does otherwise.
+        for reach in [0.5, 2.0, 8.0] {
+            let bounded = phase
+                .nearest_boundary_point(&bowl.object, &bowl.prepared, q, reach)
+                .expect("a finite point has an answer");
+            if found.distance < reach + found.error_bound {
+                assert_eq!(bounded, found, "at {q} within {reach}");
+            } else {
+                assert_eq!(bounded.distance, f64::INFINITY, "at {q} beyond {reach}");
+                assert_eq!((bounded.point, bounded.component), (q, None));
+            }
+        }
         let exact = bowl_distance(q, inner, outer, zc);
         assert!(found.error_bound >= chordal, "{found:?}");
         assert!(
@@ -52,14 +65,18 @@ fn nearest_boundary_point_matches_the_closed_form_within_the_chordal_error() {
             found.error_bound
         );
         assert!((found.point.distance(q) - found.distance).abs() <= 1e-9 * (1.0 + exact));
-        assert!((found.component.0 as usize) < bowl.object.components.len());
+        assert!(
+            found
+                .component
+                .is_some_and(|c| (c.0 as usize) < bowl.object.components.len())
+        );
         worst = worst.max((found.distance - exact).abs());
     }
     // The bound is not vacuous: the mesh is that far off somewhere.
     assert!(worst > 0.1 * chordal, "{worst} vs {chordal}");
     assert!(
         phase
-            .nearest_boundary_point(&bowl.object, &bowl.prepared, DVec3::NAN)
+            .nearest_boundary_point(&bowl.object, &bowl.prepared, DVec3::NAN, f64::INFINITY)
             .is_none()
     );
 }

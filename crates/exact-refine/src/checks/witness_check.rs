@@ -66,12 +66,16 @@ use geom_param::{DPose3, DVec3, FeatureLocation, Solid};
 /// For `local_point` in the object's own frame (mm), [`BoundaryDistance::distance`] is the
 /// distance from it to *some* representation of the whole boundary (every face of the solid),
 /// and the exact distance to the solid's boundary lies within
-/// [`BoundaryDistance::error_bound`] of it. `None` when the query cannot answer (a non-finite
-/// point, an object without a boundary representation).
+/// [`BoundaryDistance::error_bound`] of it. Only boundary points within `reach` (mm) are
+/// asked for: where the representation has no point within `reach` + its error bound, the
+/// answer may say so with `distance` = +∞ (and `point` = `local_point`); then the exact
+/// boundary is farther than `reach`. `None` when the query cannot answer (a non-finite point,
+/// an object without a boundary representation).
 pub trait NearestBoundary {
     /// The nearest boundary point to `local_point` (object frame, mm) with its distance and
-    /// error bound; `None` when unknown.
-    fn nearest_boundary(&self, local_point: DVec3) -> Option<BoundaryDistance>;
+    /// error bound, or +∞ where none is within `reach` (see the contract); `None` when
+    /// unknown.
+    fn nearest_boundary(&self, local_point: DVec3, reach: f64) -> Option<BoundaryDistance>;
 
     /// The exact solid the representation stands for, in the same (object) frame, when known.
     /// With [`Self::faces_near`] it lets [`check_witness`] measure the exact boundary's
@@ -108,7 +112,8 @@ pub trait NearestBoundary {
 pub struct BoundaryDistance {
     /// The nearest point of the representation (object frame, mm).
     pub point: DVec3,
-    /// Its distance to the query point (mm).
+    /// Its distance to the query point (mm); +∞ when no point lies within the query's reach
+    /// (then `point` is the query point).
     pub distance: f64,
     /// Bound (mm) on |exact boundary distance − `distance`| (for a mesh: its chordal error).
     pub error_bound: f64,
@@ -242,11 +247,13 @@ fn nearer_than(
     limit: f64,
     flanked: Option<FeatureLocation>,
 ) -> Nearer {
-    let Some(found) = near.nearest_boundary(local) else {
+    // Only a boundary point nearer than `limit` matters (one farther, by the error bound,
+    // answers `No` as none within reach does).
+    let Some(found) = near.nearest_boundary(local, limit) else {
         return Nearer::Unknown;
     };
     let e = found.error_bound.max(0.0);
-    if !(found.distance.is_finite() && e.is_finite()) {
+    if found.distance.is_nan() || found.distance < 0.0 || !e.is_finite() {
         return Nearer::Unknown;
     }
     if found.distance - e >= limit {
@@ -305,7 +312,7 @@ mod tests {
     }
 
     impl NearestBoundary for Ball {
-        fn nearest_boundary(&self, p: DVec3) -> Option<BoundaryDistance> {
+        fn nearest_boundary(&self, p: DVec3, _reach: f64) -> Option<BoundaryDistance> {
             let r = p - self.centre;
             let n = r.try_normalize()?;
             Some(BoundaryDistance {
@@ -327,7 +334,7 @@ mod tests {
     }
 
     impl NearestBoundary for Shell {
-        fn nearest_boundary(&self, p: DVec3) -> Option<BoundaryDistance> {
+        fn nearest_boundary(&self, p: DVec3, _reach: f64) -> Option<BoundaryDistance> {
             let n = p.try_normalize()?;
             let (di, dout) = (
                 (p.length() - self.inner).abs(),
@@ -553,7 +560,7 @@ mod tests {
 
     impl NearestBoundary for TubeWall {
         /// Exact for points inside the wall (every point queried below).
-        fn nearest_boundary(&self, p: DVec3) -> Option<BoundaryDistance> {
+        fn nearest_boundary(&self, p: DVec3, _reach: f64) -> Option<BoundaryDistance> {
             let r = p.truncate().length();
             let distance = (r - 8.0).min(10.0 - r).min(p.z).min(20.0 - p.z);
             (distance >= 0.0).then_some(BoundaryDistance {
