@@ -946,17 +946,21 @@ fn orient2d_dd(a: Coord<f64>, b: Coord<f64>, c: Coord<f64>) -> f64 {
 mod tests {
     use super::*;
 
-    /// A plain f64 magnitude is taken only where it is within its promised relative error of
-    /// the double-double one, and close to a plane (where it is not) double-double decides.
-    #[test]
-    fn plain_magnitudes_are_taken_only_within_their_bound() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
+    /// Uniform numbers in [-0.5, 0.5) from an xorshift generator started at `state`.
+    fn uniform(mut state: u64) -> impl FnMut() -> f64 {
+        move || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
             (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        }
+    }
+
+    /// A plain f64 magnitude is taken only where it is within its promised relative error of
+    /// the double-double one, and close to a plane (where it is not) double-double decides.
+    #[test]
+    fn plain_magnitudes_are_taken_only_within_their_bound() {
+        let mut next = uniform(0x2545_f491_4f6c_dd1d_u64);
         let (mut plain, mut doubled) = (0, 0);
         for k in 0..40_000 {
             let a = DVec3::new(next(), next(), next());
@@ -1000,13 +1004,7 @@ mod tests {
     /// degenerate inputs, and are accurate where plain f64 is not.
     #[test]
     fn double_double_determinants_match_exact_signs() {
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15_u64);
         for _ in 0..20_000 {
             let a = DVec3::new(next(), next(), next());
             let b = DVec3::new(next(), next(), next());
