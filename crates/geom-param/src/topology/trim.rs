@@ -199,9 +199,29 @@ fn union_of(boxes: &[(DVec2, DVec2)]) -> (DVec2, DVec2) {
         .fold(empty, |(lo, hi), b| (lo.min(b.0), hi.max(b.1)))
 }
 
-/// The runs of group `g` of an entry with `runs` runs ([`TrimEntry`]'s groups).
-fn group_runs(g: usize, runs: usize) -> std::ops::Range<usize> {
-    g * BOXES_PER_GROUP..((g + 1) * BOXES_PER_GROUP).min(runs)
+/// Calls `visit` with the runs of each of `entry`'s groups whose box `keep` accepts (given the
+/// scan's `state` so far), in order; an entry of one group has its runs visited at once (that
+/// group's box is the entry's, which the scans test first).
+#[inline(always)]
+fn visit_groups<S>(
+    entry: &TrimEntry,
+    state: &mut S,
+    keep: impl Fn(&S, (DVec2, DVec2)) -> bool,
+    mut visit: impl FnMut(&mut S, std::ops::Range<usize>),
+) {
+    let runs = entry.boxes.len();
+    if entry.groups.len() <= 1 {
+        visit(state, 0..runs);
+        return;
+    }
+    for (g, &group) in entry.groups.iter().enumerate() {
+        if keep(state, group) {
+            visit(
+                state,
+                g * BOXES_PER_GROUP..((g + 1) * BOXES_PER_GROUP).min(runs),
+            );
+        }
+    }
 }
 
 /// The points of run `k` of a polyline of `n` points ([`TrimEntry`]'s boxes).
@@ -332,23 +352,14 @@ impl Trim {
                 if off_height(entry.bounds, uv.y) {
                     continue;
                 }
-                let mut count = |runs: std::ops::Range<usize>| {
+                let near_height = |_: &i32, group| !off_height(group, uv.y);
+                visit_groups(entry, &mut w, near_height, |w, runs| {
                     for k in runs {
                         if !off_height(entry.boxes[k], uv.y) {
-                            w += run_segments(entry, k).map(crossing).sum::<i32>();
+                            *w += run_segments(entry, k).map(crossing).sum::<i32>();
                         }
                     }
-                };
-                // A lone group's box is the entry's, just tested.
-                if entry.groups.len() > 1 {
-                    for (g, &group) in entry.groups.iter().enumerate() {
-                        if !off_height(group, uv.y) {
-                            count(group_runs(g, entry.boxes.len()));
-                        }
-                    }
-                } else {
-                    count(0..entry.boxes.len());
-                }
+                });
             }
             w += l.closing_segment().map_or(0, crossing);
         }
@@ -454,25 +465,18 @@ impl Trim {
                 if nearest.is_some_and(|(g, _, _)| gap(e.bounds) >= g) {
                     continue;
                 }
-                let take = |runs: std::ops::Range<usize>, nearest: &mut Option<_>| {
+                // A run's gap is at least its group's: none in a farther group would be taken.
+                let nearer = |nearest: &Option<(f64, &TrimEntry, usize)>, group| {
+                    nearest.is_none_or(|(g, _, _)| gap(group) < g)
+                };
+                visit_groups(e, &mut nearest, nearer, |nearest, runs| {
                     for k in runs {
                         let g = gap(e.boxes[k]);
                         if nearest.is_none_or(|(best, _, _)| g < best) {
                             *nearest = Some((g, e, k));
                         }
                     }
-                };
-                // A lone group's box is the entry's, just tested.
-                if e.groups.len() > 1 {
-                    for (group_index, &group) in e.groups.iter().enumerate() {
-                        // A run's gap is at least its group's: none in it would be taken.
-                        if nearest.is_none_or(|(g, _, _)| gap(group) < g) {
-                            take(group_runs(group_index, e.boxes.len()), &mut nearest);
-                        }
-                    }
-                } else {
-                    take(0..e.boxes.len(), &mut nearest);
-                }
+                });
             }
         }
         nearest
@@ -550,18 +554,11 @@ impl Trim {
                 if farther(e.bounds, uv, bound(&best)) {
                     continue;
                 }
-                // A lone group's box is the entry's, just tested.
-                if e.groups.len() > 1 {
-                    for (g, &group) in e.groups.iter().enumerate() {
-                        // Every segment of the group lies in its box, as a run's in the run's.
-                        if !farther(group, uv, bound(&best)) {
-                            let runs = group_runs(g, e.boxes.len());
-                            nearest_on_runs(e, runs, uv, limit, (li, ei), &mut best);
-                        }
-                    }
-                } else {
-                    nearest_on_runs(e, 0..e.boxes.len(), uv, limit, (li, ei), &mut best);
-                }
+                // Every segment of a group lies in its box, as a run's in the run's.
+                let near = |best: &Option<TrimNearest>, group| !farther(group, uv, bound(best));
+                visit_groups(e, &mut best, near, |best, runs| {
+                    nearest_on_runs(e, runs, uv, limit, (li, ei), best);
+                });
             }
         }
         best.filter(|b| b.distance <= limit)
