@@ -6,9 +6,11 @@
 //! both points, the signed distance, the normal, the final features with their parameters, and
 //! [`RefineDiagnostics`] saying how far to trust all of it.
 //!
-//! [`NewtonRefiner`] is the default: it projects each seed point onto its feature along the
-//! normal (as the paper does; a vertex is its own projection), then runs a safeguarded Newton
-//! iteration on ½|P_a − P_b|² over the parameters of both features, for every pair kind
+//! [`NewtonRefiner`] is the default: it starts at the seed's feature locations (whose
+//! parameters Stage 2 interpolates from the mesh vertices' exact correspondences: the paper's
+//! projection onto the exact features, to within the mesh's chordal error; a seed point whose
+//! parameters are not finite is projected onto its feature along the normal), then runs a
+//! safeguarded Newton iteration on ½|P_a − P_b|² over the parameters of both features, for every pair kind
 //! (vertex, edge and face on either side): trust region, inertia-controlled steps (descent when
 //! separated, the depth saddle when penetrating), Newton steps on the distance itself where f
 //! is quartic (near touch), periodic wrapping, feature switching at face sides and poles, and

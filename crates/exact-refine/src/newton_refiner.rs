@@ -1,4 +1,4 @@
-//! [`NewtonRefiner`]: the default [`Refiner`] (seed projection, then safeguarded Newton).
+//! [`NewtonRefiner`]: the default [`Refiner`] (safeguarded Newton from the seed's locations).
 
 use crate::checks::diagnostics::{diagnose, gap_within_error};
 use crate::features::feature_eval::{Body, Frame, Loc};
@@ -17,8 +17,9 @@ use geom_param::{DPose3, DVec3, FeatureLocation, Seed, SeedPoint, Solid};
 /// projections.
 const SEED_ANGLE_TOLERANCE: f64 = 1e-3;
 
-/// The default [`Refiner`]: projects both seed points onto their features (a vertex is its own
-/// projection), then runs the safeguarded Newton iteration of `newton.rs` on the pair.
+/// The default [`Refiner`]: runs the safeguarded Newton iteration of `newton.rs` on the pair
+/// from the seed's own feature locations (a seed point whose parameters are not finite is
+/// first projected onto its feature).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct NewtonRefiner {
     /// Tolerances and caps.
@@ -65,10 +66,18 @@ impl Refiner for NewtonRefiner {
             angle_tolerance: options.angle_tolerance.max(SEED_ANGLE_TOLERANCE),
             ..*options
         };
+        // A seed's own parameters (Stage 2 interpolates them from the mesh vertices' exact
+        // correspondences) place the exact start within about the mesh's chordal error of the
+        // seed point, and the pair solve starts there: projecting the point first moved the
+        // start by no more than that, and cost a third of a Stage 2 seed's evaluations without
+        // saving the pair solve a step on the fixture scenes (session 21). Only a point whose
+        // parameters were not finite (`sanitize` put them mid-domain) is placed by projection.
         // A vertex has no parameters to place: whether the answer lies on an adjacent face
         // instead is decided by the pair solve's own re-entry test.
         let placeable = |point: &SeedPoint, start: &FeatureLocation| {
-            point.local_point.is_finite() && !matches!(start, FeatureLocation::Vertex { .. })
+            point.local_point.is_finite()
+                && !matches!(start, FeatureLocation::Vertex { .. })
+                && !location_is_finite(&point.location)
         };
         let mut la = Some(start_a);
         let mut lb = Some(start_b);
@@ -130,8 +139,8 @@ impl Refiner for NewtonRefiner {
 /// both solves ended in the lower one).
 ///
 /// When either side of `solution` ended off the closure of its seed face (`seeds`: the seed
-/// locations; the face itself, its edges and vertices), the pair is solved again from the
-/// projected `starts` with re-entry kept on the seed faces (`Body::Solid::within`), and that
+/// locations; the face itself, its edges and vertices), the pair is solved again from its
+/// `starts` with re-entry kept on the seed faces (`Body::Solid::within`), and that
 /// answer is polished without the restriction: if it stays on the seed faces' closures and
 /// converges, it is a local minimum of the distance over both whole solids (an end on a seed
 /// face's boundary that is no minimum of the union slides off in the polish), and it is the
@@ -205,15 +214,16 @@ fn on_seed_faces(
     }
 }
 
-/// Other starts for a pair solve that did not converge from the projected seed points
-/// (`starts`), tried in turn until one converges: the seed's own locations (`seeds`), which the
+/// Other starts for a pair solve that did not converge from its `starts` (the seed's
+/// locations, or a point's projection where they had no finite parameters), tried in turn
+/// until one converges: the seed's own locations (`seeds`), when they differ, which the
 /// solve's start puts on an edge or vertex when they lie on one to rounding
 /// ([`crate::features::feature_switch::settle_start`]); both moved onto their nearest edges;
 /// and on each side the faces across that edge, the other side at its seed. The answer is the
 /// first that converged, else `solution`.
 ///
-/// Why: the projections only place the start, from points of the mesh, and a seed may lie on
-/// the wrong side of an edge. A seed on two crossing rims (a vase's bottom edge pressed
+/// Why: a start from points of the mesh may lie on the wrong side of an edge (these cases
+/// were met when every seed point was projected first). A seed on two crossing rims (a vase's bottom edge pressed
 /// 1.0004e-3 mm into a paperweight along its edge 2, both seed locations at v = 1 to rounding)
 /// was projected 1.5e-8 in parameter into the vase's face, and the solve from there crept
 /// along the rim for 158 steps without converging, while the one from the rims converges in
@@ -397,6 +407,15 @@ fn sanitize(solid: &Solid, point: &SeedPoint) -> Option<FeatureLocation> {
             })
         }
         FeatureLocation::Vertex { id } => solid.vertices.get(id.0 as usize).map(|_| point.location),
+    }
+}
+
+/// Whether every parameter of `location` is finite (a vertex has none).
+fn location_is_finite(location: &FeatureLocation) -> bool {
+    match *location {
+        FeatureLocation::Face { u, v, .. } => u.is_finite() && v.is_finite(),
+        FeatureLocation::Edge { t, .. } => t.is_finite(),
+        FeatureLocation::Vertex { .. } => true,
     }
 }
 
