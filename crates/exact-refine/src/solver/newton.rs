@@ -86,9 +86,10 @@ pub(crate) struct State {
     pub scale: f64,
     /// Largest |∂²P/∂x_i∂x_j| / (speed_i speed_j) (1/mm): curvature scale of the Hessian.
     pub curvature: f64,
-    /// A's and B's outward directions at the points once a penetration test of the solve
-    /// took them ([`Self::penetrating_remembered`]), for the later questions about this state.
-    outward: Option<(Option<DVec3>, Option<DVec3>)>,
+    /// A's and B's outward directions at the points, each once a penetration test of the
+    /// solve took it ([`Self::penetrating_remembered`]), for the later questions about this
+    /// state (`None`: not taken).
+    outward: [Option<Option<DVec3>>; 2],
 }
 
 impl State {
@@ -142,7 +143,7 @@ impl State {
             hs,
             scale,
             curvature,
-            outward: None,
+            outward: [None, None],
         }
     }
 
@@ -227,6 +228,21 @@ impl State {
     /// ([`Self::edge_pair_gap`]), and are not penetrating while that part is within the
     /// curvature scale x the squared gradient (the edges' turn over the run between the points).
     pub(crate) fn sign(&self, a: &Body, b: &Body) -> f64 {
+        self.sign_with(|side| {
+            if side == 0 {
+                self.outward_a(a)
+            } else {
+                self.outward_b(b)
+            }
+        })
+    }
+
+    /// [`Self::sign`] with the outward directions from `outward` (0: A's, 1: B's), asked only
+    /// as far as the answer needs them: first the side whose direction is cheap (a face's,
+    /// from its derivatives; an edge's sums its faces' normals, evaluating each face again),
+    /// and the other only when the first does not already say "not behind", which rules
+    /// penetration out whatever the other says.
+    fn sign_with(&self, mut outward: impl FnMut(usize) -> Option<DVec3>) -> f64 {
         if self.d.length() <= 1e3 * EPS * self.scale {
             return 1.0;
         }
@@ -240,12 +256,21 @@ impl State {
             Some(across) => across,
             None => self.d,
         };
-        let behind_a = self.outward_a(a).map(|n| (-d).dot(n) < 0.0);
-        let behind_b = self.outward_b(b).map(|n| d.dot(n) < 0.0);
-        let penetrating = match (behind_a, behind_b) {
-            (Some(x), Some(y)) => x && y,
-            (Some(x), None) | (None, Some(x)) => x,
-            (None, None) => false,
+        // P_b behind A's direction at P_a, P_a behind B's at P_b.
+        let behind = |side: usize, n: DVec3| {
+            if side == 0 {
+                (-d).dot(n) < 0.0
+            } else {
+                d.dot(n) < 0.0
+            }
+        };
+        let face_on_a = matches!(self.la, Some(FeatureLocation::Face { .. })) && self.ea.n == 2;
+        let first = usize::from(!face_on_a);
+        let second = 1 - first;
+        let penetrating = match outward(first).map(|n| behind(first, n)) {
+            Some(false) => false,
+            Some(true) => outward(second).is_none_or(|n| behind(second, n)),
+            None => outward(second).is_some_and(|n| behind(second, n)),
         };
         if penetrating { -1.0 } else { 1.0 }
     }
@@ -279,16 +304,16 @@ impl State {
     /// A's outward direction at its point ([`Body::outward_at`]; `a` is the body the state
     /// was assembled with).
     pub(crate) fn outward_a(&self, a: &Body) -> Option<DVec3> {
-        match self.outward {
-            Some((n, _)) => n,
+        match self.outward[0] {
+            Some(n) => n,
             None => a.outward_at(&self.la, &self.ea),
         }
     }
 
     /// B's outward direction at its point.
     pub(crate) fn outward_b(&self, b: &Body) -> Option<DVec3> {
-        match self.outward {
-            Some((_, n)) => n,
+        match self.outward[1] {
+            Some(n) => n,
             None => b.outward_at(&self.lb, &self.eb),
         }
     }
@@ -297,17 +322,21 @@ impl State {
     /// that ends here asks for them again (diagnostics, signed distance). The same numbers
     /// either way: both are [`Body::outward_at`] of the state's own locations and evaluations.
     pub(crate) fn penetrating_remembered(&mut self, a: &Body, b: &Body) -> bool {
-        let takes_outward = self.na > 0
-            && self.na < self.n
-            && self.d.length() > 1e3 * EPS * self.scale
-            && self.outward.is_none();
-        if takes_outward {
-            self.outward = Some((
-                a.outward_at(&self.la, &self.ea),
-                b.outward_at(&self.lb, &self.eb),
-            ));
+        if !(self.na > 0 && self.na < self.n) {
+            return false;
         }
-        self.penetrating(a, b)
+        let mut taken = self.outward;
+        let sign = self.sign_with(|side| {
+            *taken[side].get_or_insert_with(|| {
+                if side == 0 {
+                    a.outward_at(&self.la, &self.ea)
+                } else {
+                    b.outward_at(&self.lb, &self.eb)
+                }
+            })
+        });
+        self.outward = taken;
+        sign < 0.0
     }
 
     /// Whether the pair penetrates ([`Self::sign`] negative) with parameters on both sides:
