@@ -24,7 +24,14 @@
 //!   10102`, 3.5e-12 mm): rounding gave the flat direction of ½|d|² (both points sliding
 //!   together) a negative eigenvalue, and the solve stepped its whole trust radius (40 mm)
 //!   along it without checking that f went down, came back and jumped again to its iteration
-//!   limit. The escape now has to descend, or the point is a minimum.
+//!   limit. The escape now has to descend, or the point is a minimum. Since the pair solve
+//!   starts at the seed's own parameters (session 21) its solve stopped at 3.0e-9 mm, 2.2e-4
+//!   mm along the flat valley from the touch, with f's gradient under its rounding floor: a
+//!   stationary end now goes on with Newton steps on the distance while they predict a fall
+//!   above that floor.
+//! - The same stop before the touch flipped a state (pencil-paperweight 17897396705959179123
+//!   of `soak 10000 --seed 13150`, built at -1.4e-10 mm): the first query stopped at +1.45e-8
+//!   mm, 2.7e-4 mm from the minimum, so the pose moved to delta1 was not a penetration.
 //!
 //! Truth: the oracle's minimum (independent dense sampling, polished) at the same pose, and
 //! the connecting vector along the contact normal.
@@ -169,5 +176,16 @@ fn a_vase_touching_the_bowl_at_rounding() {
             -0.3688769925974093,
             0.36771216653464217,
         ],
+    );
+}
+
+#[test]
+fn a_pencil_touching_the_paperweight_flips_at_delta1() {
+    let (pose, stats) = xtask::soak::run::replay("pencil", "paperweight", 17897396705959179123)
+        .expect("the soak's objects");
+    assert!(pose.is_some(), "the generator builds the pose");
+    assert!(
+        stats.failures.is_empty() && stats.property_failures.is_empty(),
+        "{stats:?}"
     );
 }
