@@ -5,14 +5,14 @@
 //! on the inner rim (0.0270 mm) and on the outer rim (0.0828 mm), 3 mm apart across the
 //! annulus, with a ridge of the distance between them.
 //!
-//! FIXME: only the inner rim's minimum is reported. The normal-cone path's candidates are the
+//! Only the inner rim's minimum was reported. The normal-cone path's candidates are the
 //! triangle pairs' closest points: the annulus is meshed with triangles spanning its width,
 //! and the vase's mesh lies up to 0.068 mm off its surface, so the candidate near the outer rim
-//! is at radius 39.84 mm inside a triangle (mesh distance 0.0886), not on the rim's ridge, and
-//! the radius rule takes it for the mid-annulus candidate 1.5 mm away (0.0879, whose seed
-//! descends to the inner rim). A ridge's own candidate (the closest point of a triangle's side
-//! along a convex edge, kept apart from candidates off the ridge) would seed it. This test
-//! asserts today's behaviour and fails when the second contact is found: then assert it.
+//! was at radius 39.84 mm inside a triangle (mesh distance 0.0886), not on the rim's ridge, and
+//! the radius rule took it for the mid-annulus candidate 1.5 mm away (0.0879, whose seed
+//! descends to the inner rim). A candidate dropped so now hands over its pieces' sides along
+//! a convex edge inside the component that neither it nor the kept candidate lies on: the
+//! closest points of that side, a ridge's own candidate, which the ridge rule keeps apart.
 //!
 //! Truth, independent of the stages: the oracle's minima (dense sampling, polished).
 
@@ -22,7 +22,7 @@ use xtask::soak::oracle_check::oracle_report;
 use xtask::soak::run::prepare_objects;
 
 #[test]
-fn fixme_a_vase_over_a_goblet_top_misses_the_outer_rim_minimum() {
+fn a_vase_over_a_goblet_top_touches_both_rims() {
     let pipeline = ContactPipeline::new(ContactOptions::default()).expect("default options");
     let objects = prepare_objects(&pipeline).expect("fixture objects build");
     let (goblet, vase) = (&objects["goblet"], &objects["vase"]);
@@ -66,11 +66,15 @@ fn fixme_a_vase_over_a_goblet_top_misses_the_outer_rim_minimum() {
         )
         .expect("unit quaternion");
     assert_eq!(report.state, PairState::Contact);
-    let found: Vec<f64> = report.contacts.iter().map(|c| c.distance).collect();
-    // The inner rim's contact agrees with the oracle's; the outer one is missing (FIXME).
-    assert_eq!(found.len(), 1, "{:?}", report.contacts);
+    let mut found: Vec<_> = report.contacts.iter().collect();
+    found.sort_by(|x, y| x.distance.total_cmp(&y.distance));
+    assert_eq!(found.len(), 2, "{:?}", report.contacts);
+    for (c, d) in found.iter().zip(&truth) {
+        assert!((c.distance - d).abs() <= 1e-9, "{found:?} vs {truth:?}");
+    }
     assert!(
-        (found[0] - truth[0]).abs() <= 1e-9,
-        "{found:?} vs {truth:?}"
+        found[1].point_a.distance(outer.point_a) <= 1e-6,
+        "{:?} vs {outer:?}",
+        found[1]
     );
 }

@@ -420,3 +420,60 @@ fn the_closest_pair_of_pencil_and_bowl_is_seeded() {
     let bowl = Prepared::new(paper_object("bowl", 0.2));
     check_minima(&bowl, &pencil, 41, 3.0);
 }
+
+/// The closest points of a segment and a triangle against an independent minimisation: the
+/// distance from the segment's point at s to the (convex) triangle is a convex function of s,
+/// minimised by ternary search over [0, 1] with `closest_on_triangle` for each point. The
+/// distance returned is that minimum (within 1e-9), and its points lie on the segment and the
+/// triangle at that distance.
+#[test]
+fn segment_triangle_closest_points_match_a_convex_search() {
+    use mesh_narrowphase::triangles::triangle_distance::{
+        closest_between_segment_and_triangle, closest_on_triangle,
+    };
+    let mut rng = Rng(2121);
+    let point = |rng: &mut Rng| {
+        DVec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        )
+    };
+    for case in 0..500 {
+        let t = [point(&mut rng), point(&mut rng), point(&mut rng)];
+        // Segments beside the triangle, some crossing its plane outside it.
+        let shift = DVec3::new(0.0, 0.0, rng.range(0.05, 1.5));
+        let (p, q) = (point(&mut rng) + shift, point(&mut rng) + shift);
+        let (s, on, distance) = closest_between_segment_and_triangle(p, q, &t);
+        let near = p + (q - p) * s;
+        assert!((0.0..=1.0).contains(&s), "case {case}: s {s}");
+        let b = on.barycentric;
+        let from_b = t[0] * b[0] + t[1] * b[1] + t[2] * b[2];
+        assert!(from_b.distance(on.point) <= 1e-12, "case {case}: {on:?}");
+        assert!(
+            (near.distance(on.point) - distance).abs() <= 1e-12,
+            "case {case}"
+        );
+        let gap = |s: f64| {
+            let x = p + (q - p) * s;
+            x.distance(closest_on_triangle(x, &t).point)
+        };
+        let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+        for _ in 0..200 {
+            let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+            if gap(m1) <= gap(m2) {
+                hi = m2;
+            } else {
+                lo = m1;
+            }
+        }
+        let truth = gap(0.5 * (lo + hi));
+        if truth > 1e-6 {
+            // Apart (a segment piercing the triangle is outside the function's contract).
+            assert!(
+                (distance - truth).abs() <= 1e-9,
+                "case {case}: {distance} vs {truth}"
+            );
+        }
+    }
+}

@@ -6,16 +6,17 @@
 use crate::cones::cone_front::ConeFront;
 use crate::cones::cone_traversal::{PairFrame, TraversalOutput, traverse, traverse_point};
 use crate::cones::normal_cone::{CriticalKinds, NormalCone};
-use crate::cones::patch_tree::{PatchLeaf, PatchNode, PatchTree, Piece};
+use crate::cones::patch_tree::{self, PIECE_SIDES, PatchLeaf, PatchNode, PatchTree, Piece};
 use crate::mesh_phase::{MeshOutput, MeshVerdict};
 use crate::pair_key::PairKey;
 use crate::query_side::Side;
 use crate::triangles::mesh_intersections::TriangleBuffers;
 use crate::triangles::plane_filter::planes_apart;
 use crate::triangles::triangle_distance::{
-    TrianglePoint, closest_between_triangles, closest_on_triangle,
+    TrianglePoint, closest_between_segment_and_triangle, closest_between_triangles,
+    closest_on_triangle,
 };
-use geom_param::{DPose3, EdgeConvexity, EdgeId, FeatureLocation, Seed, SeedPoint};
+use geom_param::{DPose3, EdgeId, FeatureLocation, Seed, SeedPoint};
 use glam::{DMat2, DVec2, DVec3};
 use std::collections::HashMap;
 
@@ -78,6 +79,8 @@ struct LeafPair {
     /// the sum of the two pieces' deviation bounds. Such a candidate is superseded by a
     /// certainly lower one of a neighbouring leaf pair ([`superseded`]).
     error: f64,
+    /// A's and B's leaf nodes.
+    nodes: [u32; 2],
     /// A's and B's mesh triangles.
     triangles: [u32; 2],
     /// The points' barycentric coordinates in those triangles.
@@ -249,50 +252,73 @@ pub(crate) fn cone_path(
     });
     kept.clear();
     made.clear();
+    let mut rings = (rings_a, rings_b);
+    let mut on_ridges = Vec::new();
     for (position, &i) in order.iter().enumerate() {
-        let f = &found[i];
-        let near = |k: &Found| {
-            let r = k.radius.min(f.radius);
-            let near = k.point_a.distance(f.point_a) <= r && k.point_b.distance(f.point_b) <= r;
-            let inside = f.outside.is_some_and(|r| {
-                k.point_a.distance(f.point_a) <= r && k.point_b.distance(f.point_b) <= r
-            });
-            near || inside
+        let context = (&found[..], &kept[..], &order[..position]);
+        let judged = judge(
+            &found[i],
+            context,
+            (side_a, side_b),
+            pose_ab,
+            allowance,
+            &mut rings,
+        );
+        let take = |k: usize, found: &[Found], kept: &mut Vec<usize>, made: &mut Vec<_>| {
+            let f = &found[k];
+            let seed = match f.source {
+                Source::Made(seed) => Some(seed),
+                Source::Certified => node_seed(side_a, tree_a, f.point_a, f.radius)
+                    .zip(node_seed(side_b, tree_b, inverse * f.point_b, f.radius))
+                    .map(|(a, b)| Seed { a, b }),
+            };
+            if let Some(seed) = seed {
+                kept.push(k);
+                made.push((f.rank.1, seed));
+            }
         };
-        // A leaf pair's candidate that a certainly lower one would drop (by the radius rule or
-        // as superseded) is kept when it is a local minimum of the mesh distance.
-        let mut minimum = None;
-        let mut kept_apart = |g: &Found| {
-            certainly_lower(g, f)
-                && *minimum.get_or_insert_with(|| {
-                    mesh_local_minimum((side_a, side_b), pose_ab, f, allowance, (rings_a, rings_b))
-                })
-        };
-        // A candidate on a ridge that the mesh cannot tell from a neighbour off it (neither
-        // certainly lower) may be a minimum of its own: the edge's, beside the face's.
-        let ridges_f = ridges(f, (side_a, side_b));
-        let off_its_ridge = |g: &Found| {
-            let ridges_g = ridges(g, (side_a, side_b));
-            let apart = (0..2).any(|s| ridges_f[s].is_some() && ridges_f[s] != ridges_g[s]);
-            apart && !certainly_lower(g, f)
-        };
-        let duplicate = kept.iter().any(|&k| {
-            let g = &found[k];
-            near(g) && !off_its_ridge(g) && !kept_apart(g)
-        });
-        let earlier = order[..position].iter().map(|&k| &found[k]);
-        if duplicate || superseded(earlier, f, &mut kept_apart) {
-            continue;
-        }
-        let seed = match f.source {
-            Source::Made(seed) => Some(seed),
-            Source::Certified => node_seed(side_a, tree_a, f.point_a, f.radius)
-                .zip(node_seed(side_b, tree_b, inverse * f.point_b, f.radius))
-                .map(|(a, b)| Seed { a, b }),
-        };
-        if let Some(seed) = seed {
-            kept.push(i);
-            made.push((f.rank.1, seed));
+        match judged {
+            Judged::Kept => take(i, found, kept, made),
+            Judged::Superseded => {}
+            Judged::DuplicateOf(k) => {
+                // The leaf pair's own candidates on a ridge of its pieces that neither it nor
+                // the kept candidate lies on ([`ridge_seeds`]), judged in turn.
+                // A ridge's candidate is no nearer than the leaf pair's own (its side is part of
+                // the piece), so where the kept one is certainly lower than that, it is lower
+                // than every ridge candidate too, and none would be held apart from it.
+                let (f, g) = (&found[i], &found[k]);
+                let Some(leaf) = f.leaf.filter(|_| !certainly_lower(g, f)) else {
+                    continue;
+                };
+                let taken = [ridges(f, (side_a, side_b)), ridges(g, (side_a, side_b))];
+                on_ridges.clear();
+                ridge_seeds(
+                    (side_a, tree_a, leaf.nodes[0]),
+                    (side_b, tree_b, leaf.nodes[1]),
+                    pose_ab,
+                    |k, edge| taken.iter().any(|t| t[k] == Some(edge)),
+                    |r| {
+                        if r.rank.1 <= mesh_reach {
+                            on_ridges.push(r);
+                        }
+                    },
+                );
+                for r in on_ridges.drain(..) {
+                    let context = (&found[..], &kept[..], &order[..position]);
+                    if judge(
+                        &r,
+                        context,
+                        (side_a, side_b),
+                        pose_ab,
+                        allowance,
+                        &mut rings,
+                    ) == Judged::Kept
+                    {
+                        found.push(r);
+                        take(found.len() - 1, found, kept, made);
+                    }
+                }
+            }
         }
     }
     made.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
@@ -314,6 +340,69 @@ fn ordered_bits(x: f64) -> u64 {
         !bits
     } else {
         bits | 1 << 63
+    }
+}
+
+/// What the selection does with a candidate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Judged {
+    /// It is a minimum of its own: it becomes a seed.
+    Kept,
+    /// It stands for the same minimum as kept candidate `found[k]` (the radius rule).
+    DuplicateOf(usize),
+    /// A certainly lower earlier candidate nearby supersedes it ([`superseded`]).
+    Superseded,
+}
+
+/// The selection's verdict on candidate `f` given the candidates `found`, the indices of those
+/// `kept` so far and of those `earlier` in rank order: a duplicate of a kept candidate whose
+/// points lie within the smaller radius of its own (or within its `outside` radius), unless a
+/// ridge holds it apart or it is a mesh local minimum below a certainly lower one; superseded;
+/// or kept. `rings` are the buffers of [`mesh_local_minimum`].
+fn judge(
+    f: &Found,
+    (found, kept, earlier): (&[Found], &[usize], &[usize]),
+    (side_a, side_b): (&Side<'_>, &Side<'_>),
+    pose_ab: &DPose3,
+    allowance: f64,
+    rings: &mut (&mut Vec<u32>, &mut Vec<u32>),
+) -> Judged {
+    let near = |k: &Found| {
+        let r = k.radius.min(f.radius);
+        let near = k.point_a.distance(f.point_a) <= r && k.point_b.distance(f.point_b) <= r;
+        let inside = f.outside.is_some_and(|r| {
+            k.point_a.distance(f.point_a) <= r && k.point_b.distance(f.point_b) <= r
+        });
+        near || inside
+    };
+    // A leaf pair's candidate that a certainly lower one would drop (by the radius rule or as
+    // superseded) is kept when it is a local minimum of the mesh distance.
+    let mut minimum = None;
+    let mut kept_apart = |g: &Found| {
+        certainly_lower(g, f)
+            && *minimum.get_or_insert_with(|| {
+                mesh_local_minimum((side_a, side_b), pose_ab, f, allowance, (rings.0, rings.1))
+            })
+    };
+    // A candidate on a ridge that the mesh cannot tell from a neighbour off it (neither
+    // certainly lower) may be a minimum of its own: the edge's, beside the face's.
+    let ridges_f = ridges(f, (side_a, side_b));
+    let off_its_ridge = |g: &Found| {
+        let ridges_g = ridges(g, (side_a, side_b));
+        let apart = (0..2).any(|s| ridges_f[s].is_some() && ridges_f[s] != ridges_g[s]);
+        apart && !certainly_lower(g, f)
+    };
+    let duplicate_of = kept.iter().copied().find(|&k| {
+        let g = &found[k];
+        near(g) && !off_its_ridge(g) && !kept_apart(g)
+    });
+    if let Some(k) = duplicate_of {
+        return Judged::DuplicateOf(k);
+    }
+    if superseded(earlier.iter().map(|&k| &found[k]), f, &mut kept_apart) {
+        Judged::Superseded
+    } else {
+        Judged::Kept
     }
 }
 
@@ -371,28 +460,9 @@ fn ridges(f: &Found, (side_a, side_b): (&Side<'_>, &Side<'_>)) -> [Option<EdgeId
     ]
 }
 
-/// The convex edge that the point with `barycentric` coordinates in mesh triangle `triangle`
-/// lies on: every corner that carries weight is a mesh vertex on that edge (so the point is on
-/// the triangle's side along the edge, or at its corner there).
+/// [`patch_tree::ridge_at`] on `side`'s mesh and solid.
 fn ridge_at(side: &Side<'_>, triangle: u32, barycentric: [f64; 3]) -> Option<EdgeId> {
-    const ZERO: f64 = 1e-12;
-    let corners = side.mesh.triangles.get(triangle as usize)?;
-    let mut on = None;
-    for (&vertex, &weight) in corners.iter().zip(&barycentric) {
-        if weight <= ZERO {
-            continue;
-        }
-        let FeatureLocation::Edge { id, .. } = *side.mesh.vertex_locations.get(vertex as usize)?
-        else {
-            return None;
-        };
-        if on.is_some_and(|e| e != id) {
-            return None;
-        }
-        on = Some(id);
-    }
-    let convexity = side.object.solid.edges.get(on?.0 as usize)?.convexity;
-    on.filter(|_| convexity == EdgeConvexity::Convex)
+    patch_tree::ridge_at(side.mesh, &side.object.solid, triangle, barycentric)
 }
 
 /// Whether leaf pairs' candidates `g` and `f` have mesh distances that put `g` lower by more
@@ -702,6 +772,7 @@ fn leaf_seed(
         // A leaf's inset is its one piece's deviation bound.
         leaf: Some(LeafPair {
             error: node_a.mesh_inset + node_b.mesh_inset,
+            nodes: [a, b],
             triangles: [pa.triangle, pb.triangle],
             barycentric: [
                 pa.to_triangle(pair.a.barycentric),
@@ -710,6 +781,88 @@ fn leaf_seed(
         }),
         source: Source::Made(seed),
     })
+}
+
+/// The candidates of a critical leaf pair (leaf nodes `a`, `b`) on its pieces' ridges: for each
+/// side of a piece along a convex edge inside its component ([`Piece::inner_ridges`]) that
+/// `skip` (side index 0 for A, 1 for B, and the edge) does not exclude, the closest points of
+/// that side and the other piece, handed to `push`. The selection asks for them when it drops
+/// a leaf pair's candidate as standing for a kept one's minimum, skipping the ridges either
+/// candidate already lies on.
+///
+/// Why: an edge has minima of its own (curve-surface), and the closest points of two triangles
+/// need not lie on a triangle's side along the edge when the minimum does, since the other
+/// mesh lies up to its chordal error off its surface. A vase's body over a goblet's flat top (an
+/// annulus between radii 37 and 40 mm, meshed with triangles across its width) has minima on
+/// both rims, 0.0270 and 0.0828 mm; the leaf pair at the outer rim had its closest points 0.16
+/// mm inside the annulus, which the radius rule merged with a mid-annulus candidate whose seed
+/// went to the inner rim, and the outer rim's minimum had no seed (goblet-vase
+/// 1604628255842907462 of `soak 10000 --seed 13154`).
+fn ridge_seeds(
+    (side_a, tree_a, a): (&Side<'_>, &PatchTree, u32),
+    (side_b, tree_b, b): (&Side<'_>, &PatchTree, u32),
+    pose_ab: &DPose3,
+    skip: impl Fn(usize, EdgeId) -> bool,
+    mut push: impl FnMut(Found),
+) {
+    let (Some((pa, ta)), Some((pb, tb))) = (
+        piece_of(tree_a, a, &DPose3::IDENTITY),
+        piece_of(tree_b, b, pose_ab),
+    ) else {
+        return;
+    };
+    let (node_a, node_b) = (&tree_a.nodes[a as usize], &tree_b.nodes[b as usize]);
+    let radius = node_a.radius.max(node_b.radius);
+    let error = node_a.mesh_inset + node_b.mesh_inset;
+    let sides = [(side_a, pa, &ta, &tb), (side_b, pb, &tb, &ta)];
+    for (k, &(side, piece, own, other)) in sides.iter().enumerate() {
+        for (bit, &(i, j)) in PIECE_SIDES.iter().enumerate() {
+            if piece.inner_ridges & (1 << bit) == 0 {
+                continue;
+            }
+            let on = ridge_at(side, piece.triangle, piece.barycentric[i].to_array());
+            let Some(edge) = on.filter(|&e| !skip(k, e)) else {
+                continue;
+            };
+            let (s, far, distance) = closest_between_segment_and_triangle(own[i], own[j], other);
+            let mut along = [0.0; 3];
+            along[i] = 1.0 - s;
+            along[j] = s;
+            let near = own[i] + (own[j] - own[i]) * s;
+            let (other_side, other_piece) = if k == 0 { (side_b, pb) } else { (side_a, pa) };
+            let (Some(here), Some(there)) = (
+                piece_point(side, piece, along),
+                piece_point(other_side, other_piece, far.barycentric),
+            ) else {
+                continue;
+            };
+            let ((seed_a, seed_b), (point_a, point_b), (bary_a, bary_b)) = if k == 0 {
+                ((here, there), (near, far.point), (along, far.barycentric))
+            } else {
+                ((there, here), (far.point, near), (far.barycentric, along))
+            };
+            debug_assert!(ridge_at(side, piece.triangle, piece.to_triangle(along)) == Some(edge));
+            if distance.is_finite() {
+                push(Found {
+                    rank: (1, distance),
+                    point_a,
+                    point_b,
+                    radius,
+                    outside: None,
+                    leaf: Some(LeafPair {
+                        error,
+                        nodes: [a, b],
+                        triangles: [pa.triangle, pb.triangle],
+                        barycentric: [pa.to_triangle(bary_a), pb.to_triangle(bary_b)],
+                    }),
+                    source: Source::Made(Seed {
+                        a: seed_a,
+                        b: seed_b,
+                    }),
+                });
+            }
+        }
+    }
 }
 
 /// The closest point of a leaf's piece to an apex as a seed candidate. The apex is apex `k` of

@@ -108,6 +108,69 @@ pub struct Piece {
     /// Bound (mm) on the distance between the piece and its exact surface (see
     /// `piece_deviation`).
     pub deviation: f64,
+    /// Bit k set when the piece's side k (corners (0, 1), (1, 2), (2, 0)) lies along a convex
+    /// edge of the solid whose faces both belong to the mesh's component ([`ridge_sides`]).
+    pub inner_ridges: u8,
+}
+
+/// The sides of a piece, as pairs of corner indices, in the order of [`Piece::inner_ridges`].
+pub const PIECE_SIDES: [(usize, usize); 3] = [(0, 1), (1, 2), (2, 0)];
+
+/// The convex edge that the point with `barycentric` coordinates in mesh triangle `triangle`
+/// lies on: every corner that carries weight is a mesh vertex on that edge (so the point is on
+/// the triangle's side along the edge, or at its corner there).
+#[must_use]
+pub fn ridge_at(
+    mesh: &ComponentMesh,
+    solid: &Solid,
+    triangle: u32,
+    barycentric: [f64; 3],
+) -> Option<EdgeId> {
+    const ZERO: f64 = 1e-12;
+    let corners = mesh.triangles.get(triangle as usize)?;
+    let mut on = None;
+    for (&vertex, &weight) in corners.iter().zip(&barycentric) {
+        if weight <= ZERO {
+            continue;
+        }
+        let FeatureLocation::Edge { id, .. } = *mesh.vertex_locations.get(vertex as usize)? else {
+            return None;
+        };
+        if on.is_some_and(|e| e != id) {
+            return None;
+        }
+        on = Some(id);
+    }
+    let convexity = solid.edges.get(on?.0 as usize)?.convexity;
+    on.filter(|_| convexity == EdgeConvexity::Convex)
+}
+
+/// [`Piece::inner_ridges`] of `piece`: its sides whose two corners lie on one convex edge
+/// ([`ridge_at`]) both of whose faces are among the mesh's (`faces`, sorted). A ridge on the
+/// component's open boundary is also one of the neighbouring component, whose own pairs seed
+/// it; one inside the component has only this component's candidates.
+fn ridge_sides(mesh: &ComponentMesh, solid: &Solid, faces: &[FaceId], piece: &Piece) -> u8 {
+    let on = |corner: usize| {
+        ridge_at(
+            mesh,
+            solid,
+            piece.triangle,
+            piece.barycentric[corner].to_array(),
+        )
+    };
+    let inside = |edge: EdgeId| {
+        solid
+            .edges
+            .get(edge.0 as usize)
+            .is_some_and(|e| e.uses.iter().all(|u| faces.binary_search(&u.face).is_ok()))
+    };
+    let mut mask = 0;
+    for (k, &(i, j)) in PIECE_SIDES.iter().enumerate() {
+        if on(i).is_some_and(|e| on(j) == Some(e) && inside(e)) {
+            mask |= 1 << k;
+        }
+    }
+    mask
 }
 
 impl Piece {
@@ -248,9 +311,13 @@ impl PatchTree {
             };
             split_triangle(t as u32, corners, inflation, &mut pieces);
         }
+        let mut faces = mesh.triangle_faces.clone();
+        faces.sort_unstable();
+        faces.dedup();
         for (k, piece) in pieces.iter_mut().enumerate() {
             let item = piece_item(mesh, solid, piece, k as u32, &mut apex_normals);
             piece.deviation = item.deviation;
+            piece.inner_ridges = ridge_sides(mesh, solid, &faces, piece);
             items.push(item);
         }
         let mut apexes = Vec::with_capacity(apex_normals.len());
@@ -344,6 +411,7 @@ fn split_triangle(t: u32, corners: [DVec3; 3], min_width: f64, pieces: &mut Vec<
             barycentric: [DVec3::X, DVec3::Y, DVec3::Z],
             corners,
             deviation: 0.0,
+            inner_ridges: 0,
         },
         0,
     )];

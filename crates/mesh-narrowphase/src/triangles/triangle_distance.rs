@@ -220,6 +220,43 @@ pub fn closest_between_triangles(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> TrianglePa
     }
 }
 
+/// The closest points of segment `p`..`q` and triangle `t`: the segment's parameter s in
+/// [0, 1] (its point is p + s (q − p)), the triangle's point and their distance (Ericson
+/// 5.1.10's cases for a segment: its two ends against the triangle and the segment against the
+/// triangle's three edges). Exact up to rounding for a segment that does not pierce the
+/// triangle; for one that does, the distance found may be positive.
+#[must_use]
+pub fn closest_between_segment_and_triangle(
+    p: DVec3,
+    q: DVec3,
+    t: &[DVec3; 3],
+) -> (f64, TrianglePoint, f64) {
+    let mut best = (f64::INFINITY, 0.0, closest_on_triangle(p, t));
+    for (s, end) in [(0.0, p), (1.0, q)] {
+        let on = closest_on_triangle(end, t);
+        let squared = end.distance_squared(on.point);
+        if squared < best.0 {
+            best = (squared, s, on);
+        }
+    }
+    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+        let (s, u) = segment_parameters(p, q, t[i], t[j]);
+        let (on_segment, on_edge) = (p + (q - p) * s, t[i] + (t[j] - t[i]) * u);
+        let squared = on_segment.distance_squared(on_edge);
+        if squared < best.0 {
+            let mut barycentric = [0.0; 3];
+            barycentric[i] = 1.0 - u;
+            barycentric[j] = u;
+            let point = TrianglePoint {
+                point: on_edge,
+                barycentric,
+            };
+            best = (squared, s, point);
+        }
+    }
+    (best.1, best.2, best.0.sqrt())
+}
+
 /// A lower bound (mm) on the distance between two triangles by separating axes: the largest
 /// gap between their projections onto the two triangles' normals and the nine cross products
 /// of an edge of each, over the axes' lengths (a projection onto a unit vector does not
