@@ -6,17 +6,19 @@
 //! both points, the signed distance, the normal, the final features with their parameters, and
 //! [`RefineDiagnostics`] saying how far to trust all of it.
 //!
-//! [`NewtonRefiner`] is the default: it starts at the seed's feature locations (whose
-//! parameters Stage 2 interpolates from the mesh vertices' exact correspondences: the paper's
-//! projection onto the exact features, to within the mesh's chordal error; a seed point whose
-//! parameters are not finite is projected onto its feature along the normal), then runs a
-//! safeguarded Newton iteration on ½|P_a − P_b|² over the parameters of both features, for every pair kind
-//! (vertex, edge and face on either side): trust region, inertia-controlled steps (descent when
-//! separated, the depth saddle when penetrating), Newton steps on the distance itself where f
-//! is quartic (near touch), periodic wrapping, feature switching at face sides and poles, and
-//! non-convergence and degenerate (continuous) contact reported as values. A solve allocates
-//! nothing; from a Stage 2 seed it takes 2-4 Newton steps. `docs/STABILITY.md` at the workspace
-//! root tabulates the stiff and extreme cases, and `benches/refine.rs` times every pair kind.
+//! [`NewtonRefiner`] is the default: it starts at the seed's feature locations (whose parameters
+//! Stage 2 interpolates from the mesh vertices' exact correspondences: the paper's projection onto
+//! the exact features, to within the mesh's chordal error; a seed point whose parameters are not
+//! finite is projected onto its feature along the normal), then runs a safeguarded Newton iteration
+//! on ½|P_a − P_b|² over the parameters of both features, for every pair kind (vertex, edge and
+//! face on either side): trust region, inertia-controlled steps (descent when separated, the depth
+//! saddle when penetrating), Newton steps on the distance itself where f is quartic (near touch,
+//! and after a stationary end while they predict a fall above the gradient's rounding floor: f's
+//! gradient |d| ∇|d| sinks under it at a touch first), periodic wrapping, feature switching at face
+//! sides and poles, and non-convergence and degenerate (continuous) contact reported as values. A
+//! solve allocates nothing; from a Stage 2 seed it takes 2-4 Newton steps. `docs/STABILITY.md` at
+//! the workspace root tabulates the stiff and extreme cases, and `benches/refine.rs` times every
+//! pair kind.
 //!
 //! What it deliberately does not know: meshes, hulls, bounding volumes and components (that is
 //! Stages 1 and 2), which seed to refine or whether two objects are in contact (the pipeline

@@ -31,6 +31,8 @@ pub struct ConeScratch {
     order: Vec<usize>,
     kept: Vec<usize>,
     made: Vec<(f64, Seed)>,
+    /// A dropped candidate's ridge candidates ([`ridge_seeds`]), before they are judged.
+    on_ridges: Vec<Found>,
     /// The triangles holding a candidate's points ([`mesh_local_minimum`]), A's and B's.
     rings: (Vec<u32>, Vec<u32>),
     /// The last traversal's front per component pair.
@@ -157,6 +159,7 @@ pub(crate) fn cone_path(
         order,
         kept,
         made,
+        on_ridges,
         rings: (rings_a, rings_b),
         ..
     } = path;
@@ -253,7 +256,20 @@ pub(crate) fn cone_path(
     kept.clear();
     made.clear();
     let mut rings = (rings_a, rings_b);
-    let mut on_ridges = Vec::new();
+    // Keeps `found[k]` as a seed (a certified pair's is made now).
+    let take = |k: usize, found: &[Found], kept: &mut Vec<usize>, made: &mut Vec<_>| {
+        let f = &found[k];
+        let seed = match f.source {
+            Source::Made(seed) => Some(seed),
+            Source::Certified => node_seed(side_a, tree_a, f.point_a, f.radius)
+                .zip(node_seed(side_b, tree_b, inverse * f.point_b, f.radius))
+                .map(|(a, b)| Seed { a, b }),
+        };
+        if let Some(seed) = seed {
+            kept.push(k);
+            made.push((f.rank.1, seed));
+        }
+    };
     for (position, &i) in order.iter().enumerate() {
         let context = (&found[..], &kept[..], &order[..position]);
         let judged = judge(
@@ -264,28 +280,14 @@ pub(crate) fn cone_path(
             allowance,
             &mut rings,
         );
-        let take = |k: usize, found: &[Found], kept: &mut Vec<usize>, made: &mut Vec<_>| {
-            let f = &found[k];
-            let seed = match f.source {
-                Source::Made(seed) => Some(seed),
-                Source::Certified => node_seed(side_a, tree_a, f.point_a, f.radius)
-                    .zip(node_seed(side_b, tree_b, inverse * f.point_b, f.radius))
-                    .map(|(a, b)| Seed { a, b }),
-            };
-            if let Some(seed) = seed {
-                kept.push(k);
-                made.push((f.rank.1, seed));
-            }
-        };
         match judged {
             Judged::Kept => take(i, found, kept, made),
             Judged::Superseded => {}
             Judged::DuplicateOf(k) => {
                 // The leaf pair's own candidates on a ridge of its pieces that neither it nor
-                // the kept candidate lies on ([`ridge_seeds`]), judged in turn.
-                // A ridge's candidate is no nearer than the leaf pair's own (its side is part of
-                // the piece), so where the kept one is certainly lower than that, it is lower
-                // than every ridge candidate too, and none would be held apart from it.
+                // the kept candidate lies on ([`ridge_seeds`]), judged in turn. One is no
+                // nearer than the pair's own candidate (its side is part of the piece): where
+                // the kept one is certainly lower than that, none would be held apart from it.
                 let (f, g) = (&found[i], &found[k]);
                 let Some(leaf) = f.leaf.filter(|_| !certainly_lower(g, f)) else {
                     continue;
