@@ -214,7 +214,8 @@ fn triangles_apart_are_not_tested_for_intersection() {
 }
 
 /// Certified pairs are kept by the front as well, under small motions, while they stay
-/// certifiable at the query's rotation: a pencil lying in a bowl (the two-contact fixture
+/// certified at the query's rotation (without a new test for those certified for the turn
+/// that the motion allows, `turned_certificates.rs`): a pencil lying in a bowl (the two-contact fixture
 /// scene), whose contacts the traversal answers with 45 certified pairs. Queried again at the
 /// same pose, nudged by 2.4e-4 mm, and turned by 1e-6 rad, each warm query examines less than
 /// a twentieth of the fresh query's 1712 node pairs (60 to 64: the apex's and the front's

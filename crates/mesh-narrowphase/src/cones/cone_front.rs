@@ -18,7 +18,9 @@
 //! pairs it reaches and the kept leaf or certified pairs that a fresh traversal would have
 //! dropped since.
 
-use crate::cones::cone_traversal::{FrontEntry, PairFrame, TraversalOutput, certifiable};
+use crate::cones::cone_traversal::{
+    Certificate, FrontEntry, PairFrame, TraversalOutput, certificate,
+};
 use crate::cones::patch_tree::PatchTree;
 use geom_param::DPose3;
 
@@ -128,14 +130,15 @@ impl ConeFront {
                         .get(e.a as usize)
                         .zip(tree_b.nodes.get(e.b as usize));
                     nodes.is_some_and(|(a, b)| {
-                        certifiable(a, b, frame.rotation * b.cone.axis, &frame.rotation)
+                        let axis_b = frame.rotation * b.cone.axis;
+                        certificate(a, b, (axis_b, &frame.rotation), 0.0).is_some()
                     })
                 };
                 self.leaves.retain(|e| match (e.kept, e.kept_leaf(moved)) {
                     (Some(k), Some(stop)) if e.slack > moved => {
-                        if !k.certified {
+                        if k.certified.is_none() {
                             out.leaves.push(stop);
-                        } else if still_certified(e) {
+                        } else if k.certified == Some(Certificate::ForTurn) || still_certified(e) {
                             out.certified.push(stop);
                         } else {
                             out.queue(e.a, e.b);

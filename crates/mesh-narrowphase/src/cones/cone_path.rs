@@ -27,6 +27,9 @@ pub struct ConeScratch {
     found: Vec<Found>,
     /// The critical leaf pairs' lower bounds ([`ordered_bits`]) and indices, nearest first.
     nearest_first: Vec<u128>,
+    /// The candidates' ranks ([`Found::rank`], its distance as [`ordered_bits`]) and indices
+    /// into `found`, as sorting keys.
+    ranked: Vec<u128>,
     /// Indices into `found`, closest first (a candidate is too large to sort by moving it).
     order: Vec<usize>,
     kept: Vec<usize>,
@@ -42,8 +45,8 @@ pub struct ConeScratch {
 /// Where a seed candidate comes from.
 #[derive(Clone, Copy, Debug)]
 enum Source {
-    /// A certified pair; its seed is made once kept ([`node_seed`]).
-    Certified,
+    /// A certified pair (A's and B's nodes); its seed is made once kept ([`node_seed`]).
+    Certified([u32; 2]),
     /// A leaf pair or an apex: the seed is already made.
     Made(Seed),
 }
@@ -156,6 +159,7 @@ pub(crate) fn cone_path(
         traversal,
         found,
         nearest_first,
+        ranked,
         order,
         kept,
         made,
@@ -169,7 +173,7 @@ pub(crate) fn cone_path(
             &tree_a.nodes[stop.a as usize],
             &tree_b.nodes[stop.b as usize],
         );
-        if let Some(f) = predict(na, nb, &frame) {
+        if let Some(f) = predict((na, nb), [stop.a, stop.b], &frame) {
             found.push(f);
         }
     }
@@ -247,12 +251,16 @@ pub(crate) fn cone_path(
     }
 
     // 3. One seed per minimum, closest first.
+    // Sorted as integer keys (rank, then index), as the leaf pairs above: comparing the
+    // candidates through their indices was a fifth of a ball-in-a-cavity query (179 certified
+    // pairs).
+    ranked.clear();
+    ranked.extend(found.iter().enumerate().map(|(k, f)| {
+        (u128::from(f.rank.0) << 96) | (u128::from(ordered_bits(f.rank.1)) << 32) | k as u128
+    }));
+    ranked.sort_unstable();
     order.clear();
-    order.extend(0..found.len());
-    order.sort_unstable_by(|&i, &j| {
-        let (x, y) = (&found[i].rank, &found[j].rank);
-        x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)).then(i.cmp(&j))
-    });
+    order.extend(ranked.iter().map(|&key| key as u32 as usize));
     kept.clear();
     made.clear();
     let mut rings = (rings_a, rings_b);
@@ -261,8 +269,12 @@ pub(crate) fn cone_path(
         let f = &found[k];
         let seed = match f.source {
             Source::Made(seed) => Some(seed),
-            Source::Certified => node_seed(side_a, tree_a, f.point_a, f.radius)
-                .zip(node_seed(side_b, tree_b, inverse * f.point_b, f.radius))
+            Source::Certified([na, nb]) => node_seed((side_a, tree_a, na), f.point_a, f.radius)
+                .zip(node_seed(
+                    (side_b, tree_b, nb),
+                    inverse * f.point_b,
+                    f.radius,
+                ))
                 .map(|(a, b)| Seed { a, b }),
         };
         if let Some(seed) = seed {
@@ -582,7 +594,11 @@ impl Height {
 /// least, solved from their 2x2 Hessians (which the certificate makes positive definite; where
 /// the models disagree, the midpoint of the two anchors). No surface is evaluated, so that
 /// duplicates are merged before seeds are made ([`node_seed`]).
-fn predict(na: &PatchNode, nb: &PatchNode, frame: &PairFrame) -> Option<Found> {
+fn predict(
+    (na, nb): (&PatchNode, &PatchNode),
+    nodes: [u32; 2],
+    frame: &PairFrame,
+) -> Option<Found> {
     let axis_b = frame.rotation * nb.cone.axis;
     let w = (na.cone.axis - axis_b).try_normalize()?;
     let (e1, e2) = w.any_orthonormal_pair();
@@ -612,7 +628,7 @@ fn predict(na: &PatchNode, nb: &PatchNode, frame: &PairFrame) -> Option<Found> {
         radius: MODEL_MERGE * na.radius.min(nb.radius),
         outside: clamped.then_some(na.radius.min(nb.radius)),
         leaf: None,
-        source: Source::Certified,
+        source: Source::Certified(nodes),
     })
 }
 
@@ -640,16 +656,25 @@ fn lowest_gap(ha: &Height, hb: &Height) -> DVec2 {
 /// object's frame) moved to the nearest point of the component's mesh, and located on the
 /// exact surface through its triangle's corner parameters. On the mesh, like every other seed,
 /// and unaffected by singular parametrisations (a sphere's pole), which an expansion in the
-/// face's parameters is not. (The whole tree is searched, not the pair's node: the prediction
-/// may fall just beyond the node.)
+/// face's parameters is not. The point is the nearest of the pair's node's pieces when that
+/// lies within the mesh's chordal error (the models place the point on the exact surface up to
+/// their third-order error, which the mesh follows within that error); otherwise, where the
+/// prediction fell beyond the node, the nearest of the whole component's.
 ///
 /// Where that point lies within `snap` (mm; the candidate's merge radius, within which the
 /// models place the minimum) or the chordal error of a mesh vertex on a vertex of the solid (a
 /// pole or an apex), the seed is that vertex: a seed a hair beside a pole makes Newton crawl
 /// through the pole's singular parametrisation, one on it starts from the vertex itself, and
 /// Stage 3 moves off it onto a face when the minimum lies beside it.
-fn node_seed(side: &Side<'_>, tree: &PatchTree, point: DVec3, snap: f64) -> Option<SeedPoint> {
-    let (piece, on_piece) = nearest_piece(tree, 0, point)?;
+fn node_seed(
+    (side, tree, node): (&Side<'_>, &PatchTree, u32),
+    point: DVec3,
+    snap: f64,
+) -> Option<SeedPoint> {
+    let within = side.chordal_error() + 1e-12 * side.size;
+    let (piece, on_piece) = nearest_piece(tree, node, point)
+        .filter(|(_, p)| p.point.distance(point) <= within)
+        .or_else(|| nearest_piece(tree, 0, point))?;
     let snap = snap.max(side.chordal_error()) + 1e-12 * side.size;
     let corner = (0..3).find(|&k| {
         let b = piece.barycentric[k];

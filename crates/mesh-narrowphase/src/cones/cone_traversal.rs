@@ -75,8 +75,9 @@ pub struct FrontEntry {
 ///   kept for a motion of [`CONE_CARRY`] of its smaller ball radius when its cones rule out a
 ///   critical pair for any motion that long, as for a pair dropped by its cones.
 /// - A certified pair ([`KeptLeaf::certified`]), kept for a motion of [`LEAF_CARRY`] of its
-///   smaller ball radius while it is still certifiable at the query's rotation: a resting
-///   pencil in a bowl has 45 of them, which every query tested again before.
+///   smaller ball radius while it is still certified at the query's rotation: a resting
+///   pencil in a bowl has 45 of them, which every query tested again before. Those certified
+///   for any turn that such a motion allows ([`Certificate::ForTurn`]) are not tested again.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct KeptLeaf {
     /// Whether the cones allowed a critical pair.
@@ -93,11 +94,12 @@ pub struct KeptLeaf {
     /// pose then, as for `lower`: the triangles stay apart while it less `moved` is positive.
     /// −∞ for a certified pair.
     pub gap: f64,
-    /// A certified pair ([`certifiable`]) kept as one, while its slack lasts and while it is
-    /// still certifiable at the query's rotation (which the front tests again: the certificate
+    /// For a certified pair ([`certificate`]) kept as one, not a leaf pair, while its slack
+    /// lasts: how far its certificate reaches. One for the turn of its slack is kept as it is;
+    /// one for its rotation only is tested again at the query's rotation (the certificate
     /// depends on the two nodes' relative orientation only, and keeping a pair that a fresh
-    /// test would drop only adds a candidate, as for a leaf pair), not a leaf pair.
-    pub certified: bool,
+    /// test would drop only adds a candidate, as for a leaf pair).
+    pub certified: Option<Certificate>,
 }
 
 impl FrontEntry {
@@ -252,8 +254,19 @@ pub fn slab_lower_bound(
     along_a.max((t - a_down - b.slab[1]).max(b.slab[0] - t - a_up))
 }
 
+/// How long a certificate ([`certificate`]) holds as B turns against A.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Certificate {
+    /// At the rotation it was tested at; a carried pair is tested again at every other.
+    AtRotation,
+    /// At every relative rotation within the tested turn of it.
+    ForTurn,
+}
+
 /// Whether the node pair holds at most one local minimum of the distance between the exact
-/// surfaces (and at most one penetration witness), so that one seed stands for it.
+/// surfaces (and at most one penetration witness), so that one seed stands for it; `None` when
+/// that is not certain, and [`Certificate::ForTurn`] when it stays certain for any turn of B
+/// against A by at most `turn` (rad) from `rotation`.
 /// `rotation` turns B's frame into A's; `axis_b` is B's cone axis in A's frame.
 ///
 /// Both nodes must be smooth (no apex, no concave crease, curvature sampled everywhere) with
@@ -273,11 +286,25 @@ pub fn slab_lower_bound(
 /// minimum at most, whatever its sign. Convex creases inside a patch only add convex kinks to
 /// the gap and are allowed. This certifies crossed cylinders (each flat along one direction) as
 /// well as a ball in a bowl.
+///
+/// After a turn of B by ω <= `turn` the same test passes when it passes here with these
+/// allowances: μ changes by at most ω, so τ by at most ω/2; B's tensor in A's frame, Q C Qᵀ
+/// for the turn Q, moves by at most 2 |Q - I| ‖C_B‖ <= 2ω‖C_B‖; w, the bisector of axis_A and
+/// -axis_B, turns by β <= ω / (2 cos((μ + ω)/2)) (|axis_A - axis_B| >= 2 cos((μ + ω)/2) along
+/// the turn), and a quadratic form restricted to a plane turned by β moves by at most
+/// 2β‖M‖, M = C̄_A + C̄_B. So λ_min falls by at most 2ω‖C_B‖ + 2β(‖C_A‖ + ‖C_B‖), and the
+/// stretch is taken at τ + ω/2. A carried certified pair ([`KeptLeaf`]) is thus not tested
+/// again while B turns by less than `turn` since the test.
 #[must_use]
-pub fn certifiable(a: &PatchNode, b: &PatchNode, axis_b: DVec3, rotation: &DMat3) -> bool {
+pub fn certificate(
+    a: &PatchNode,
+    b: &PatchNode,
+    (axis_b, rotation): (DVec3, &DMat3),
+    turn: f64,
+) -> Option<Certificate> {
     let narrow = CERTIFY_CONE.cos();
     if !(a.smooth && b.smooth && a.cone.cos >= narrow && b.cone.cos >= narrow) {
-        return false;
+        return None;
     }
     let axis_a = a.cone.axis;
     // cos τ for τ = max(θ_A, θ_B) + μ/2, μ = angle(axis_A, -axis_B), without trigonometry:
@@ -291,11 +318,9 @@ pub fn certifiable(a: &PatchNode, b: &PatchNode, axis_b: DVec3, rotation: &DMat3
     };
     let cos_tilt = wide.cos * ch - wide.sin * sh;
     if cos_tilt <= 0.0 || cos_tilt.is_nan() {
-        return false;
+        return None;
     }
-    let Some(w) = (axis_a - axis_b).try_normalize() else {
-        return false;
-    };
+    let w = (axis_a - axis_b).try_normalize()?;
     let (e1, e2) = w.any_orthonormal_pair();
     let inverse = rotation.transpose();
     let (f1, f2) = (inverse * e1, inverse * e2);
@@ -309,9 +334,29 @@ pub fn certifiable(a: &PatchNode, b: &PatchNode, axis_b: DVec3, rotation: &DMat3
         ca.norm() + a.curvature_spread,
         cb.norm() + b.curvature_spread,
     );
-    let stretch = 1.0 / (cos_tilt * cos_tilt * cos_tilt) - 1.0;
-    let bound = lambda_min - a.curvature_spread - b.curvature_spread - stretch * (na + nb);
-    bound > CURVATURE_MARGIN * (na + nb) && bound.is_finite()
+    let stretch = |c: f64| 1.0 / (c * c * c) - 1.0;
+    let margin = CURVATURE_MARGIN * (na + nb);
+    let bound = lambda_min - a.curvature_spread - b.curvature_spread;
+    let here = bound - stretch(cos_tilt) * (na + nb);
+    if !(here > margin && here.is_finite()) {
+        return None;
+    }
+    // The same after a turn by `turn`: cos(τ + ω/2) and cos((μ + ω)/2) by the angle sums.
+    let (ct, st) = ((0.5 * turn).cos(), (0.5 * turn).sin());
+    let sin_tilt = wide.sin * ch + wide.cos * sh;
+    let cos_tilt_turned = cos_tilt * ct - sin_tilt * st;
+    let cos_half_mu_turned = ch * ct - sh * st;
+    let turned = if cos_tilt_turned > 0.0 && cos_half_mu_turned > 0.0 {
+        let beta = turn / (2.0 * cos_half_mu_turned);
+        bound - stretch(cos_tilt_turned) * (na + nb) - 2.0 * turn * nb - 2.0 * beta * (na + nb)
+    } else {
+        f64::NEG_INFINITY
+    };
+    Some(if turned > margin {
+        Certificate::ForTurn
+    } else {
+        Certificate::AtRotation
+    })
 }
 
 /// The directions from a ball (centre `from`, radius `r_from`) to another at offset `d`
@@ -443,7 +488,7 @@ impl CarriedDrop<'_> {
 ///   do not overlap) and whose normal cones rule out both kinds of critical pair
 ///   ([`CriticalKinds`]).
 ///
-/// A pair that may hold a critical pair and is [`certifiable`] stops there; otherwise the node
+/// A pair that may hold a critical pair and is certified ([`certificate`]) stops there; otherwise the node
 /// with the larger ball is split (leaves against inner nodes: the inner node). The cheap tests
 /// come first: the balls, then the cones (disjoint balls without a critical pair are dropped),
 /// then the slabs.
@@ -546,7 +591,7 @@ pub fn traverse(
         // The front's entry for a pair kept (a leaf pair, or a certified one) for a motion of
         // `carry` since the reference pose, with its triangles' separating gap ([`KeptLeaf`]);
         // tested again next query when the motion so far has used that up.
-        let kept_for = |carry: f64, gap: f64, certified: bool| {
+        let kept_for = |carry: f64, gap: f64, certified: Option<Certificate>| {
             if carry > moved {
                 FrontEntry {
                     kept: Some(KeptLeaf {
@@ -562,10 +607,25 @@ pub fn traverse(
                 stopped(-1.0)
             }
         };
-        if critical && certifiable(a, b, axis_b, &frame.rotation) {
+        // A certified pair is carried for a motion of `carry`, which turns B by less than
+        // `turn`: the front's motion bound counts a turn by ω as 2 sin(ω/2) b_reach, and
+        // 2 asin(x/2) <= x π/3 for x <= 1 (a convex function below its chord).
+        let carry = LEAF_CARRY * a.radius.min(b.radius);
+        let ratio = carry / b_reach;
+        let turn = if ratio <= 1.0 {
+            ratio * std::f64::consts::FRAC_PI_3
+        } else {
+            std::f64::consts::PI
+        };
+        let certified = if critical {
+            certificate(a, b, (axis_b, &frame.rotation), turn)
+        } else {
+            None
+        };
+        if certified.is_some() {
             out.certified.push(stop);
-            let carry = LEAF_CARRY * a.radius.min(b.radius);
-            out.front.push(kept_for(carry, f64::NEG_INFINITY, true));
+            out.front
+                .push(kept_for(carry, f64::NEG_INFINITY, certified));
             continue;
         }
         match (a.is_leaf(), b.is_leaf()) {
@@ -619,7 +679,7 @@ pub fn traverse(
                 out.front.push(kept_for(
                     carry,
                     gap.unwrap_or(f64::NEG_INFINITY) - moved,
-                    false,
+                    None,
                 ));
             }
             (true, false) => {
