@@ -44,7 +44,7 @@ fn check(nodes_a: &[&PatchNode], nodes_b: &[&PatchNode], turn: f64, rng: &mut Rn
         for b in nodes_b {
             for _ in 0..tilts {
                 let facing = turning(b.cone.axis, -a.cone.axis);
-                let tilt = DQuat::from_axis_angle(random_axis(rng), rng.range(0.0, 0.4));
+                let tilt = DQuat::from_axis_angle(rng.axis(), rng.range(0.0, 0.4));
                 let rotation = (tilt * facing).normalize();
                 let r = DMat3::from_quat(rotation);
                 let here = certificate(a, b, (r * b.cone.axis, &r), turn);
@@ -59,7 +59,7 @@ fn check(nodes_a: &[&PatchNode], nodes_b: &[&PatchNode], turn: f64, rng: &mut Rn
                     } else {
                         rng.range(0.0, turn)
                     };
-                    let q = DQuat::from_axis_angle(random_axis(rng), angle);
+                    let q = DQuat::from_axis_angle(rng.axis(), angle);
                     let turned = DMat3::from_quat((q * rotation).normalize());
                     let again = certificate(a, b, (turned * b.cone.axis, &turned), 0.0);
                     assert!(
@@ -71,16 +71,6 @@ fn check(nodes_a: &[&PatchNode], nodes_b: &[&PatchNode], turn: f64, rng: &mut Rn
         }
     }
     for_turn
-}
-
-fn random_axis(rng: &mut Rng) -> DVec3 {
-    DVec3::new(
-        rng.range(-1.0, 1.0),
-        rng.range(-1.0, 1.0),
-        rng.range(-1.0, 1.0),
-    )
-    .try_normalize()
-    .unwrap_or(DVec3::Z)
 }
 
 #[test]

@@ -39,14 +39,18 @@ impl Rng {
     pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.unit()
     }
-    pub fn rotation(&mut self) -> DQuat {
-        let axis = DVec3::new(
+    /// A unit vector (from the cube, normalised; +z in the unlikely zero case).
+    pub fn axis(&mut self) -> DVec3 {
+        DVec3::new(
             self.range(-1.0, 1.0),
             self.range(-1.0, 1.0),
             self.range(-1.0, 1.0),
         )
         .try_normalize()
-        .unwrap_or(DVec3::Z);
+        .unwrap_or(DVec3::Z)
+    }
+    pub fn rotation(&mut self) -> DQuat {
+        let axis = self.axis();
         DQuat::from_axis_angle(axis, self.range(0.0, std::f64::consts::TAU))
     }
 }
