@@ -10,8 +10,9 @@
 //! curve by at most [`FLATNESS`] of the loop's extent, or [`MAX_SEGMENTS_PER_ENTRY`] segments).
 //! Containment is the winding number of the polylines, refined by the exact p-curve near the
 //! boundary: within the polyline's flatness of an entry, the side of the exact curve's tangent at
-//! the nearest exact point decides. Nearest points are found on the polyline and then polished by
-//! Newton's method on |c(t) - (u, v)|² over the entry's exact p-curve. Both scans skip runs of
+//! the nearest exact point decides. Nearest points of lines and circles are taken in closed
+//! form; those of other p-curves are found on the polyline and then polished by Newton's method
+//! on |c(t) - (u, v)|² over the entry's exact p-curve. Both scans skip runs of
 //! [`SEGMENTS_PER_BOX`] segments by their boxes, and groups of [`BOXES_PER_GROUP`] runs by
 //! theirs: a run or group farther than the best point so far, or not spanning the ray's height,
 //! holds no segment that would count.
@@ -61,6 +62,9 @@ pub struct TrimEntry {
     /// g · [`BOXES_PER_GROUP`] .. (g + 1) · [`BOXES_PER_GROUP`] (the last fewer). A single
     /// group's box is the entry's `bounds`, which the scans test first, so they skip its test.
     groups: Vec<(DVec2, DVec2)>,
+    /// The p-curve gives its nearest points in closed form ([`Curve2::nearest_param`]): the
+    /// nearest-point search takes them from it, not from the polyline. Built with the polyline.
+    closed_form: bool,
 }
 
 impl TrimEntry {
@@ -75,6 +79,7 @@ impl TrimEntry {
             bounds: (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
             boxes: Vec::new(),
             groups: Vec::new(),
+            closed_form: false,
         }
     }
 
@@ -127,6 +132,7 @@ impl TrimLoop {
                 .map(|k| box_of(&entry.polyline[run_points(k, entry.polyline.len())]))
                 .collect();
             entry.groups = entry.boxes.chunks(BOXES_PER_GROUP).map(union_of).collect();
+            entry.closed_form = entry.pcurve.nearest_param(entry.start()).is_some();
         }
         Self { entries }
     }
@@ -270,6 +276,9 @@ pub struct Trim {
     /// The cells of the loops' box that no polyline comes near, with their side of the trim
     /// ([`Trim::contains`]'s first answer); built with the trim.
     grid: Option<ContainmentGrid>,
+    /// Some entry has no closed-form nearest point ([`TrimEntry`]'s `closed_form`), so that
+    /// nearest points are also searched on polylines.
+    polyline_entries: bool,
 }
 
 /// The boundary point of a trim nearest to a (u, v).
@@ -298,11 +307,13 @@ impl Trim {
             lo = lo.min(e.bounds.0);
             hi = hi.max(e.bounds.1);
         }
+        let polyline_entries = loops.iter().flat_map(|l| &l.entries).any(|e| !e.closed_form);
         let mut trim = Self {
             loops,
             periods: [period(&domain[0]), period(&domain[1])],
             bounds: (lo, hi),
             grid: None,
+            polyline_entries,
         };
         trim.grid = ContainmentGrid::new(
             trim.bounds,
@@ -450,7 +461,13 @@ impl Trim {
     #[must_use]
     pub fn nearest(&self, uv: DVec2) -> Option<TrimNearest> {
         let uv = self.unwrap(uv);
-        self.nearest_within(uv, self.nearest_bound(uv))
+        // Closed-form entries are each searched whole; only polylines need a bound to skip by.
+        let limit = if self.polyline_entries {
+            self.nearest_bound(uv)
+        } else {
+            f64::INFINITY
+        };
+        self.nearest_within(uv, limit)
     }
 
     /// An upper bound on the distance from `uv` to the polylines: the distance to the first
@@ -488,11 +505,62 @@ impl Trim {
             })
     }
 
-    /// [`Trim::nearest`] for a `uv` already unwrapped, when some point of the polylines lies
-    /// within `limit` of it; `None` otherwise. Where it is found it is the same point (the
-    /// polylines' nearest, polished), as the limit only skips what lies beyond it.
+    /// [`Trim::nearest`] for a `uv` already unwrapped, when some boundary point lies within
+    /// `limit` of it (for a polyline's entry, a point of its polyline); `None` otherwise. The
+    /// limit only skips what lies beyond it.
+    ///
+    /// Entries whose p-curves have closed-form nearest points ([`Curve2::nearest_param`]: lines
+    /// and circles) give their exact nearest point; the others, their polyline's nearest point
+    /// polished on the exact p-curve ([`Trim::polish`]), searched within the band of the
+    /// closed-form answer so that both are compared on exact points.
+    ///
+    /// Why: a Newton iterate that leaves a face asks for its nearest boundary point, and the
+    /// tube's annulus faces (two circles of 256 segments each) made those scans and polishes a
+    /// sixth of a loft-in-tube query.
     fn nearest_within(&self, uv: DVec2, limit: f64) -> Option<TrimNearest> {
-        let mut near = self.polyline_nearest(uv, limit)?;
+        let (lo, hi) = self.bounds();
+        // A polyline lies within half of this of its curve, so that a curve lies within it of
+        // its polyline's box.
+        let band = 2.0 * FLATNESS * (hi - lo).max_element();
+        let mut best: Option<TrimNearest> = None;
+        for (loop_index, l) in self.loops.iter().enumerate() {
+            for (index, e) in l.entries.iter().enumerate() {
+                let bound = best.as_ref().map_or(limit, |b| b.distance.min(limit));
+                if !e.closed_form || farther(e.bounds, uv, bound + band) {
+                    continue;
+                }
+                let Some(t) = e.pcurve.nearest_param(uv) else {
+                    continue;
+                };
+                let point = e.pcurve.eval(t).point;
+                let distance = point.distance(uv);
+                if distance <= bound && best.as_ref().is_none_or(|b| distance < b.distance) {
+                    best = Some(TrimNearest {
+                        loop_index,
+                        index,
+                        t,
+                        point,
+                        distance,
+                    });
+                }
+            }
+        }
+        if !self.polyline_entries {
+            return best;
+        }
+        let polyline_limit = best.as_ref().map_or(limit, |b| (b.distance + band).min(limit));
+        let polished = self
+            .polyline_nearest(uv, polyline_limit, false)
+            .map(|near| self.polish(uv, near));
+        match (best, polished) {
+            (Some(b), Some(p)) if b.distance <= p.distance => Some(b),
+            (b, p) => p.or(b),
+        }
+    }
+
+    /// A polyline's nearest point `near` to `uv` moved onto its entry's exact p-curve: Newton's
+    /// method on |c(t) − uv|² from the polyline's parameter.
+    fn polish(&self, uv: DVec2, mut near: TrimNearest) -> TrimNearest {
         let entry = &self.loops[near.loop_index].entries[near.index];
         let range = entry.pcurve.domain();
         let mut t = near.t;
@@ -537,12 +605,13 @@ impl Trim {
             near.point = start;
         }
         near.distance = near.point.distance(uv);
-        Some(near)
+        near
     }
 
     /// The point of the polylines nearest to `uv` (its entry, parameter and distance), when
-    /// one lies within `limit`; `None` otherwise.
-    fn polyline_nearest(&self, uv: DVec2, limit: f64) -> Option<TrimNearest> {
+    /// one lies within `limit`; `None` otherwise. Over every entry when `all`, otherwise over
+    /// the entries without a closed-form nearest point.
+    fn polyline_nearest(&self, uv: DVec2, limit: f64, all: bool) -> Option<TrimNearest> {
         let mut best: Option<TrimNearest> = None;
         // An entry whose box is farther than the limit or the best distance so far, by more
         // than the rounding of a computed segment distance (a few ε of the coordinates), has no
@@ -551,7 +620,7 @@ impl Trim {
             |best: &Option<TrimNearest>| best.as_ref().map_or(limit, |b| b.distance.min(limit));
         for (li, l) in self.loops.iter().enumerate() {
             for (ei, e) in l.entries.iter().enumerate() {
-                if farther(e.bounds, uv, bound(&best)) {
+                if (e.closed_form && !all) || farther(e.bounds, uv, bound(&best)) {
                     continue;
                 }
                 // Every segment of a group lies in its box, as a run's in the run's.
@@ -571,7 +640,7 @@ impl Trim {
             .filter_map(TrimLoop::closing_segment)
             .map(|ab| closest_on_segment(uv, ab).1.distance(uv))
             .fold(f64::INFINITY, f64::min);
-        self.polyline_nearest(uv, self.nearest_bound(uv))
+        self.polyline_nearest(uv, self.nearest_bound(uv), true)
             .map_or(closing, |n| n.distance.min(closing))
     }
 }
@@ -826,7 +895,7 @@ mod tests {
                     .map(|w| super::closest_on_segment(p, (w[0].1, w[1].1)).1.distance(p))
                     .fold(f64::INFINITY, f64::min);
                 let bound = trim.nearest_bound(p);
-                let near = trim.polyline_nearest(p, bound).expect("within its bound");
+                let near = trim.polyline_nearest(p, bound, true).expect("within its bound");
                 assert_eq!(near.distance, brute, "{p}");
             }
         }

@@ -645,6 +645,18 @@ impl Curve2 for Segment2 {
     fn domain(&self) -> ParamRange {
         self.range
     }
+
+    /// The projection of `uv` onto the segment, clamped to it.
+    fn nearest_param(&self, uv: DVec2) -> Option<f64> {
+        let along = self.end - self.start;
+        let length_squared = along.length_squared();
+        let s = if length_squared > 0.0 {
+            ((uv - self.start).dot(along) / length_squared).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        Some((self.range.min + s * self.range.span()).clamp(self.range.min, self.range.max))
+    }
 }
 
 /// A p-curve moved by a linear blend of two small corrections so that it passes exactly
