@@ -145,10 +145,16 @@ mod tests {
 
     /// Points on a grid around the curves, the centre and the arcs' ends among them.
     fn queries() -> Vec<DVec2> {
-        let mut out = vec![DVec2::new(1.0, -2.0), DVec2::new(1.0, -2.0) + DVec2::X * 3.0];
+        let mut out = vec![
+            DVec2::new(1.0, -2.0),
+            DVec2::new(1.0, -2.0) + DVec2::X * 3.0,
+        ];
         for i in -8..=8 {
             for j in -8..=8 {
-                out.push(DVec2::new(f64::from(i) * 0.77 + 0.1, f64::from(j) * 0.61 - 2.0));
+                out.push(DVec2::new(
+                    f64::from(i) * 0.77 + 0.1,
+                    f64::from(j) * 0.61 - 2.0,
+                ));
             }
         }
         out
@@ -191,8 +197,14 @@ mod tests {
                 let distance = curve.eval(t).point.distance(uv);
                 let sampled = sampled_distance(curve.as_ref(), uv);
                 // The samples lie 1/20000 of the domain apart: within 3e-4 of the curve's points.
-                assert!(distance <= sampled + 1e-12, "{curve:?} at {uv}: {distance} > {sampled}");
-                assert!(distance >= sampled - 3e-4, "{curve:?} at {uv}: {distance} < {sampled}");
+                assert!(
+                    distance <= sampled + 1e-12,
+                    "{curve:?} at {uv}: {distance} > {sampled}"
+                );
+                assert!(
+                    distance >= sampled - 3e-4,
+                    "{curve:?} at {uv}: {distance} < {sampled}"
+                );
             }
         }
     }

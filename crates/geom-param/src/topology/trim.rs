@@ -307,7 +307,10 @@ impl Trim {
             lo = lo.min(e.bounds.0);
             hi = hi.max(e.bounds.1);
         }
-        let polyline_entries = loops.iter().flat_map(|l| &l.entries).any(|e| !e.closed_form);
+        let polyline_entries = loops
+            .iter()
+            .flat_map(|l| &l.entries)
+            .any(|e| !e.closed_form);
         let mut trim = Self {
             loops,
             periods: [period(&domain[0]), period(&domain[1])],
@@ -548,7 +551,9 @@ impl Trim {
         if !self.polyline_entries {
             return best;
         }
-        let polyline_limit = best.as_ref().map_or(limit, |b| (b.distance + band).min(limit));
+        let polyline_limit = best
+            .as_ref()
+            .map_or(limit, |b| (b.distance + band).min(limit));
         let polished = self
             .polyline_nearest(uv, polyline_limit, false)
             .map(|near| self.polish(uv, near));
@@ -895,7 +900,9 @@ mod tests {
                     .map(|w| super::closest_on_segment(p, (w[0].1, w[1].1)).1.distance(p))
                     .fold(f64::INFINITY, f64::min);
                 let bound = trim.nearest_bound(p);
-                let near = trim.polyline_nearest(p, bound, true).expect("within its bound");
+                let near = trim
+                    .polyline_nearest(p, bound, true)
+                    .expect("within its bound");
                 assert_eq!(near.distance, brute, "{p}");
             }
         }
