@@ -38,6 +38,8 @@ pub struct ConeScratch {
     on_ridges: Vec<Found>,
     /// The triangles holding a candidate's points ([`mesh_local_minimum`]), A's and B's.
     rings: (Vec<u32>, Vec<u32>),
+    /// Per candidate of `found`, its [`seed_distance`] once asked for (NaN before; ∞ for none).
+    seed_distances: Vec<f64>,
     /// The last traversal's front per component pair.
     pub(crate) fronts: HashMap<PairKey, ConeFront>,
 }
@@ -165,6 +167,7 @@ pub(crate) fn cone_path(
         made,
         on_ridges,
         rings: (rings_a, rings_b),
+        seed_distances,
         ..
     } = path;
     found.clear();
@@ -263,6 +266,7 @@ pub(crate) fn cone_path(
     order.extend(ranked.iter().map(|&key| key as u32 as usize));
     kept.clear();
     made.clear();
+    seed_distances.clear();
     let mut rings = (rings_a, rings_b);
     // Keeps `found[k]` as a seed (a certified pair's is made now).
     let take = |k: usize, found: &[Found], kept: &mut Vec<usize>, made: &mut Vec<_>| {
@@ -290,7 +294,7 @@ pub(crate) fn cone_path(
             (side_a, side_b),
             pose_ab,
             allowance,
-            &mut rings,
+            (&mut rings, seed_distances),
         );
         match judged {
             Judged::Kept => take(i, found, kept, made),
@@ -325,7 +329,7 @@ pub(crate) fn cone_path(
                         (side_a, side_b),
                         pose_ab,
                         allowance,
-                        &mut rings,
+                        (&mut rings, seed_distances),
                     ) == Judged::Kept
                     {
                         found.push(r);
@@ -372,14 +376,15 @@ enum Judged {
 /// `kept` so far and of those `earlier` in rank order: a duplicate of a kept candidate whose
 /// points lie within the smaller radius of its own (or within its `outside` radius), unless a
 /// ridge holds it apart or it is a mesh local minimum below a certainly lower one; superseded;
-/// or kept. `rings` are the buffers of [`mesh_local_minimum`].
+/// or kept. `rings` are the buffers of [`mesh_local_minimum`], `seed_distances` the candidates'
+/// [`seed_distance`]s as far as asked for.
 fn judge(
     f: &Found,
     (found, kept, earlier): (&[Found], &[usize], &[usize]),
     (side_a, side_b): (&Side<'_>, &Side<'_>),
     pose_ab: &DPose3,
     allowance: f64,
-    rings: &mut (&mut Vec<u32>, &mut Vec<u32>),
+    (rings, seed_distances): (&mut (&mut Vec<u32>, &mut Vec<u32>), &mut Vec<f64>),
 ) -> Judged {
     let near = |k: &Found| {
         let r = k.radius.min(f.radius);
@@ -413,7 +418,42 @@ fn judge(
     if let Some(k) = duplicate_of {
         return Judged::DuplicateOf(k);
     }
-    if superseded(earlier.iter().map(|&k| &found[k]), f, &mut kept_apart) {
+    // Lower than `f` by the meshes, or by the exact surfaces at its seed ([`seed_distance`])
+    // where `f` lies on no ridge that `g` does not: a ridge has minima of its own, which the
+    // ridge rule above keeps apart from a neighbour off the ridge unless the meshes alone
+    // tell the two apart.
+    let lower = |k: usize| {
+        let g = &found[k];
+        if certainly_lower(g, f) {
+            return true;
+        }
+        let (Some(_), Some(f_leaf)) = (g.leaf, f.leaf) else {
+            return false;
+        };
+        let ridges_g = ridges(g, (side_a, side_b));
+        if (0..2).any(|s| ridges_f[s].is_some() && ridges_f[s] != ridges_g[s]) {
+            return false;
+        }
+        if seed_distances.len() <= k {
+            seed_distances.resize(k + 1, f64::NAN);
+        }
+        if seed_distances[k].is_nan() {
+            seed_distances[k] =
+                seed_distance(g, (side_a, side_b), pose_ab).unwrap_or(f64::INFINITY);
+        }
+        seed_distances[k] + allowance < f.rank.1 - f_leaf.error
+    };
+    let is_minimum = || {
+        *minimum.get_or_insert_with(|| {
+            mesh_local_minimum((side_a, side_b), pose_ab, f, allowance, (rings.0, rings.1))
+        })
+    };
+    if superseded(
+        earlier.iter().map(|&k| (k, &found[k])),
+        f,
+        lower,
+        is_minimum,
+    ) {
         Judged::Superseded
     } else {
         Judged::Kept
@@ -421,35 +461,69 @@ fn judge(
 }
 
 /// Whether the leaf pair's candidate `f` is not a local minimum of the distance between leaf
-/// pairs: an earlier candidate of `earlier` (closest first) from a neighbouring leaf pair
-/// (points within the sum of the two candidates' radii on both sides, so that the pairs' balls
-/// meet on both sides) is closer by more than the two mesh distances' error bounds, so that the
-/// exact surfaces are certainly closer there too. Along a valley of the distance that falls
-/// faster than the meshes' error, every candidate but the lowest has such a neighbour, so the
-/// valley gets one seed; two minima keep a seed each, as the distance rises between them (up
-/// to the leaves' resolution, as for [`Found::radius`]).
+/// pairs: an earlier candidate of `earlier` (closest first, with its index) from a neighbouring
+/// leaf pair (points within the sum of the two candidates' radii on both sides, so that the
+/// pairs' balls meet on both sides) is certainly closer (`lower`), while `f` is no local
+/// minimum of the mesh distance (`is_minimum`). Along a valley of the
+/// distance that falls faster than the meshes' error, every candidate but the lowest has such
+/// a neighbour, so the valley gets one seed; two minima keep a seed each, as the distance rises
+/// between them (up to the leaves' resolution, as for [`Found::radius`]).
 ///
-/// Why the error bounds: two minima of the exact distance in neighbouring leaf pairs whose
-/// mesh distances are ordered the other way round (a paperweight's rim 1e-3 mm into a goblet's
-/// lip beside a second minimum at 3.3e-2 mm, with the lip's mesh 5e-2 mm off) lost the deeper
-/// one when any lower neighbour superseded.
-///
-/// A neighbour for which `kept_apart` holds does not supersede.
+/// Certainly closer: the neighbour's mesh distance plus its error bound, or the exact distance
+/// between its seed's surface points ([`seed_distance`], a distance the solids attain there),
+/// lies below `f`'s mesh distance less its error bound, the least distance of the exact
+/// surfaces over `f`'s pieces. Why the error bounds: two minima of the exact distance in
+/// neighbouring leaf pairs whose mesh distances are ordered the other way round (a
+/// paperweight's rim 1e-3 mm into a goblet's lip beside a second minimum at 3.3e-2 mm, with the
+/// lip's mesh 5e-2 mm off) lost the deeper one when any lower neighbour superseded. Why the
+/// exact distance: in a conformal contact (a pencil tilted in a tube, 0.05 mm of clearance on
+/// radii of 5 mm) the distance along the contact line varies by less than the meshes' error,
+/// and with mesh bounds alone each of the line's leaf pairs kept a seed of its own (seven seeds
+/// for two contacts, each a Newton run).
 fn superseded<'f>(
-    mut earlier: impl Iterator<Item = &'f Found>,
+    mut earlier: impl Iterator<Item = (usize, &'f Found)>,
     f: &Found,
-    mut kept_apart: impl FnMut(&Found) -> bool,
+    mut lower: impl FnMut(usize) -> bool,
+    mut is_minimum: impl FnMut() -> bool,
 ) -> bool {
     if f.leaf.is_none() {
         return false;
     }
-    earlier.any(|g| {
+    earlier.any(|(k, g)| {
         let r = f.radius + g.radius;
-        certainly_lower(g, f)
-            && g.point_a.distance(f.point_a) <= r
+        g.point_a.distance(f.point_a) <= r
             && g.point_b.distance(f.point_b) <= r
-            && !kept_apart(g)
+            && lower(k)
+            && !is_minimum()
     })
+}
+
+/// The distance (mm) between the exact surface points of a made seed's two locations (B's
+/// moved into A's frame): a distance the two solids attain near the candidate. `None` for a
+/// candidate without a made seed, and where a seed point on a trimmed face lies outside its
+/// trim (parameters interpolated across a triangle along a curved trim can fall a hair beyond
+/// it, onto the surface's extension) or is not finite.
+fn seed_distance(
+    f: &Found,
+    (side_a, side_b): (&Side<'_>, &Side<'_>),
+    pose_ab: &DPose3,
+) -> Option<f64> {
+    let Source::Made(seed) = f.source else {
+        return None;
+    };
+    let on_solid = |side: &Side<'_>, p: &SeedPoint| {
+        let solid = &side.object.solid;
+        if let FeatureLocation::Face { id, u, v } = p.location {
+            let trim = solid.face(id).trim.as_ref();
+            if trim.is_some_and(|t| !t.contains(DVec2::new(u, v), 0.0)) {
+                return None;
+            }
+        }
+        let x = solid.point_at(&p.location);
+        x.is_finite().then_some(x)
+    };
+    let (a, b) = (on_solid(side_a, &seed.a)?, on_solid(side_b, &seed.b)?);
+    Some(a.distance(*pose_ab * b))
 }
 
 /// The ridges (convex edges) that a leaf pair's candidate's mesh points lie on, A's and B's:
