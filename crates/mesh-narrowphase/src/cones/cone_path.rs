@@ -14,7 +14,7 @@ use crate::triangles::mesh_intersections::TriangleBuffers;
 use crate::triangles::plane_filter::planes_apart;
 use crate::triangles::triangle_distance::{
     TrianglePoint, closest_between_segment_and_triangle, closest_between_triangles,
-    closest_on_triangle,
+    closest_on_triangle, normals_gap,
 };
 use geom_param::{DPose3, EdgeId, FeatureLocation, Seed, SeedPoint};
 use glam::{DMat2, DVec2, DVec3};
@@ -25,8 +25,9 @@ use std::collections::HashMap;
 pub struct ConeScratch {
     traversal: TraversalOutput,
     found: Vec<Found>,
-    /// The critical leaf pairs' lower bounds ([`ordered_bits`]) and indices, nearest first.
-    nearest_first: Vec<u128>,
+    /// The critical leaf pairs' lower bounds (the upper half of [`ordered_bits`]) and indices,
+    /// nearest first.
+    nearest_first: Vec<u64>,
     /// The candidates' ranks ([`Found::rank`], its distance as [`ordered_bits`]) and indices
     /// into `found`, as sorting keys.
     ranked: Vec<u128>,
@@ -186,18 +187,24 @@ pub(crate) fn cone_path(
     // computed.
     let first_leaf = found.len();
     // Nearest pairs first: their candidates, made first, cover the pairs around them. Sorted as
-    // integer keys (the lower bound's order above the pair's index): sorting the pairs
-    // themselves by `total_cmp` was a tenth of a pencil-on-tube query.
+    // 64-bit integer keys, the lower bound's order to 20 bits of mantissa (a relative 1e-6;
+    // nearer ties only keep the traversal's order) above the pair's index: sorting the pairs
+    // themselves by `total_cmp` was a tenth of a pencil-on-tube query, and 128-bit keys with the
+    // whole bound a twentieth.
     nearest_first.clear();
     nearest_first.extend(
         (traversal.leaves.iter().enumerate())
             .filter(|(_, l)| l.critical)
-            .map(|(k, l)| (u128::from(ordered_bits(l.lower)) << 64) | k as u128),
+            .map(|(k, l)| {
+                // Each leaf pair holds two nodes' worth of memory: far fewer than 2^32 fit.
+                let index = u32::try_from(k).expect("fewer than 2^32 leaf pairs");
+                (ordered_bits(l.lower) >> 32 << 32) | u64::from(index)
+            }),
     );
     nearest_first.sort_unstable();
     for leaf in nearest_first
         .iter()
-        .map(|&key| &traversal.leaves[key as u64 as usize])
+        .map(|&key| &traversal.leaves[key as u32 as usize])
     {
         if let Some(pair) = triangle_pair(tree_a, tree_b, leaf.a, leaf.b) {
             if leaf.meshes_may_meet && out.penetrating_pairs.contains(&pair) {
@@ -209,13 +216,14 @@ pub(crate) fn cone_path(
             &tree_b.nodes[leaf.b as usize],
         );
         let cb = frame.rotation * nb.centre + frame.translation;
+        let (ra, rb) = (na.radius * na.radius, nb.radius * nb.radius);
         let covered = found[first_leaf..].iter().any(|f| {
-            f.point_a.distance(na.centre) <= na.radius && f.point_b.distance(cb) <= nb.radius
+            f.point_a.distance_squared(na.centre) <= ra && f.point_b.distance_squared(cb) <= rb
         });
         if covered {
             continue;
         }
-        if let Some(f) = leaf_seed((side_a, tree_a, leaf.a), (side_b, tree_b, leaf.b), pose_ab)
+        if let Some(f) = leaf_seed((side_a, tree_a, leaf.a), (side_b, tree_b, leaf.b), &frame)
             .filter(|f| f.rank.1 <= mesh_reach)
         {
             found.push(f);
@@ -230,7 +238,7 @@ pub(crate) fn cone_path(
         keep(apex_seed(
             (side_a, tree_a, k),
             (side_b, tree_b, node),
-            pose_ab,
+            &frame,
             true,
         ));
     }
@@ -238,7 +246,7 @@ pub(crate) fn cone_path(
         keep(apex_seed(
             (side_b, tree_b, k),
             (side_a, tree_a, node),
-            pose_ab,
+            &frame,
             false,
         ));
     }
@@ -313,7 +321,7 @@ pub(crate) fn cone_path(
                 ridge_seeds(
                     (side_a, tree_a, leaf.nodes[0]),
                     (side_b, tree_b, leaf.nodes[1]),
-                    pose_ab,
+                    &frame,
                     |k, edge| taken.iter().any(|t| t[k] == Some(edge)),
                     |r| {
                         if r.rank.1 <= mesh_reach {
@@ -601,7 +609,9 @@ fn mesh_local_minimum(
         let corners_a = ma.triangle(t as usize);
         rings_b.iter().all(|&u| {
             let corners_b = mb.triangle(u as usize).map(|p| *pose_ab * p);
-            closest_between_triangles(&corners_a, &corners_b).distance >= f.rank.1 - allowance
+            let threshold = f.rank.1 - allowance;
+            normals_gap(&corners_a, &corners_b) >= threshold
+                || closest_between_triangles(&corners_a, &corners_b).distance >= threshold
         })
     })
 }
@@ -829,14 +839,23 @@ fn nearest_piece(tree: &PatchTree, node: u32, point: DVec3) -> Option<(&Piece, T
     best.map(|(piece, p, _)| (piece, p))
 }
 
-/// The corners of a leaf's piece in A's frame (`pose`: its component's pose in A's frame) and in
-/// its own, with the piece.
-fn piece_of<'t>(tree: &'t PatchTree, node: u32, pose: &DPose3) -> Option<(&'t Piece, [DVec3; 3])> {
+/// A leaf's piece with its corners in A's frame: moved by `to_a` (B's frame in A's) for a piece
+/// of B's, as they are (`None`) for one of A's.
+fn piece_of<'t>(
+    tree: &'t PatchTree,
+    node: u32,
+    to_a: Option<&PairFrame>,
+) -> Option<(&'t Piece, [DVec3; 3])> {
     let PatchLeaf::Piece(k) = tree.nodes.get(node as usize)?.leaf else {
         return None;
     };
     let piece = tree.pieces.get(k as usize)?;
-    Some((piece, piece.corners.map(|p| *pose * p)))
+    let corners = match to_a {
+        // The rotation as a matrix: a quaternion's rotation of a point costs twice as much.
+        Some(f) => piece.corners.map(|p| f.rotation * p + f.translation),
+        None => piece.corners,
+    };
+    Some((piece, corners))
 }
 
 /// The seed point of a point with barycentric coordinates `b` in `piece`.
@@ -856,10 +875,10 @@ fn piece_point(side: &Side<'_>, piece: &Piece, b: [f64; 3]) -> Option<SeedPoint>
 fn leaf_seed(
     (side_a, tree_a, a): (&Side<'_>, &PatchTree, u32),
     (side_b, tree_b, b): (&Side<'_>, &PatchTree, u32),
-    pose_ab: &DPose3,
+    frame: &PairFrame,
 ) -> Option<Found> {
-    let (pa, ta) = piece_of(tree_a, a, &DPose3::IDENTITY)?;
-    let (pb, tb) = piece_of(tree_b, b, pose_ab)?;
+    let (pa, ta) = piece_of(tree_a, a, None)?;
+    let (pb, tb) = piece_of(tree_b, b, Some(frame))?;
     let pair = closest_between_triangles(&ta, &tb);
     let seed = Seed {
         a: piece_point(side_a, pa, pair.a.barycentric)?,
@@ -905,14 +924,13 @@ fn leaf_seed(
 fn ridge_seeds(
     (side_a, tree_a, a): (&Side<'_>, &PatchTree, u32),
     (side_b, tree_b, b): (&Side<'_>, &PatchTree, u32),
-    pose_ab: &DPose3,
+    frame: &PairFrame,
     skip: impl Fn(usize, EdgeId) -> bool,
     mut push: impl FnMut(Found),
 ) {
-    let (Some((pa, ta)), Some((pb, tb))) = (
-        piece_of(tree_a, a, &DPose3::IDENTITY),
-        piece_of(tree_b, b, pose_ab),
-    ) else {
+    let (Some((pa, ta)), Some((pb, tb))) =
+        (piece_of(tree_a, a, None), piece_of(tree_b, b, Some(frame)))
+    else {
         return;
     };
     let (node_a, node_b) = (&tree_a.nodes[a as usize], &tree_b.nodes[b as usize]);
@@ -975,17 +993,16 @@ fn ridge_seeds(
 fn apex_seed(
     (apex_side, apex_tree, k): (&Side<'_>, &PatchTree, u32),
     (side, tree, node): (&Side<'_>, &PatchTree, u32),
-    pose_ab: &DPose3,
+    frame: &PairFrame,
     apex_is_a: bool,
 ) -> Option<Found> {
     let apex = apex_tree.apexes.get(k as usize)?;
-    let (apex_pose, piece_pose) = if apex_is_a {
-        (DPose3::IDENTITY, *pose_ab)
+    let (piece, corners) = piece_of(tree, node, apex_is_a.then_some(frame))?;
+    let point = if apex_is_a {
+        apex.point
     } else {
-        (*pose_ab, DPose3::IDENTITY)
+        frame.rotation * apex.point + frame.translation
     };
-    let (piece, corners) = piece_of(tree, node, &piece_pose)?;
-    let point = apex_pose * apex.point;
     let on_piece: TrianglePoint = closest_on_triangle(point, &corners);
     let apex_point = SeedPoint {
         component: apex_side.component,

@@ -156,23 +156,35 @@ pub(crate) fn report_mesh_intersections(
         side_a,
         side_b,
         pose_ab,
-        &out.penetration_centres,
+        (&out.penetration_centres, segments),
         &mut out.seeds,
     );
 }
 
-/// One seed per region centre (A's frame): the centre projected onto both meshes.
+/// One seed per region centre (A's frame): the centre projected onto both meshes. The
+/// intersection segments' ends lie on both meshes, so the nearest of them bounds both
+/// searches (plus a rounding allowance): nodes beyond it are never opened.
 pub(crate) fn push_region_seeds(
     side_a: &Side<'_>,
     side_b: &Side<'_>,
     pose_ab: &DPose3,
-    centres: &[DVec3],
+    (centres, segments): (&[DVec3], &[IntersectionSegment]),
     seeds: &mut Vec<Seed>,
 ) {
     let inverse = pose_ab.inverse();
     for &centre in centres {
-        let a = side_a.seed_side.seed_point(centre, f64::MAX);
-        let b = side_b.seed_side.seed_point(inverse * centre, f64::MAX);
+        let nearest_end = segments
+            .iter()
+            .flat_map(|s| [s.start, s.end])
+            .map(|p| p.distance(centre))
+            .fold(f64::INFINITY, f64::min);
+        let bound = if nearest_end.is_finite() {
+            nearest_end * (1.0 + 1e-9) + 1e-9 * (side_a.size + side_b.size)
+        } else {
+            f64::MAX
+        };
+        let a = side_a.seed_side.seed_point(centre, bound);
+        let b = side_b.seed_side.seed_point(inverse * centre, bound);
         if let (Some(a), Some(b)) = (a, b) {
             seeds.push(Seed { a, b });
         }
