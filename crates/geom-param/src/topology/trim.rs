@@ -10,7 +10,8 @@
 //! curve by at most [`FLATNESS`] of the loop's extent, or [`MAX_SEGMENTS_PER_ENTRY`] segments).
 //! Containment is the winding number of the polylines, refined by the exact p-curve near the
 //! boundary: within the polyline's flatness of an entry, the side of the exact curve's tangent at
-//! the nearest exact point decides. Nearest points of lines and circles are taken in closed
+//! the nearest exact point decides (on a trim of lines and circles alone, whose nearest points
+//! are exact, that side decides everywhere). Nearest points of lines and circles are taken in closed
 //! form; those of other p-curves are found on the polyline and then polished by Newton's method
 //! on |c(t) - (u, v)|² over the entry's exact p-curve. Both scans skip runs of
 //! [`SEGMENTS_PER_BOX`] segments by their boxes, and groups of [`BOXES_PER_GROUP`] runs by
@@ -408,14 +409,23 @@ impl Trim {
 
     /// [`Trim::contains`] for an unwrapped `uv` of a trim with points, without the grid: from
     /// the nearest polyline point within `tolerance.max(band) + band`, else the winding number.
+    /// On a trim whose entries all have closed-form nearest points (lines and circles) the
+    /// nearest boundary point is exact at any distance, and its side decides wherever it lies
+    /// (the segment from `uv` to it crosses no boundary, or a nearer point would lie on it):
+    /// the winding scan of the circles' polylines was a tenth of a loft-in-tube query.
     fn contains_by_scan(&self, uv: DVec2, tolerance: f64, band: f64) -> bool {
-        let Some(near) = self.nearest_within(uv, tolerance.max(band) + band) else {
+        let limit = if self.polyline_entries {
+            tolerance.max(band) + band
+        } else {
+            f64::INFINITY
+        };
+        let Some(near) = self.nearest_within(uv, limit) else {
             return self.winding(uv) != 0;
         };
         if near.distance <= tolerance {
             return true;
         }
-        if near.distance > band {
+        if near.distance > band && self.polyline_entries {
             return self.winding(uv) != 0;
         }
         let l = &self.loops[near.loop_index];
