@@ -11,9 +11,9 @@
 //! Containment is the winding number of the polylines, refined by the exact p-curve near the
 //! boundary: within the polyline's flatness of an entry, the side of the exact curve's tangent at
 //! the nearest exact point decides (on a trim of lines and circles alone, whose nearest points
-//! are exact, that side decides everywhere). Nearest points of lines and circles are taken in closed
-//! form; those of other p-curves are found on the polyline and then polished by Newton's method
-//! on |c(t) - (u, v)|² over the entry's exact p-curve. Both scans skip runs of
+//! are exact, that side decides everywhere). Nearest points of lines and circles are taken in
+//! closed form; those of other p-curves are found on the polyline and then polished by Newton's
+//! method on |c(t) - (u, v)|² over the entry's exact p-curve. Both scans skip runs of
 //! [`SEGMENTS_PER_BOX`] segments by their boxes, and groups of [`BOXES_PER_GROUP`] runs by
 //! theirs: a run or group farther than the best point so far, or not spanning the ray's height,
 //! holds no segment that would count.

@@ -472,10 +472,10 @@ fn judge(
 /// pairs: an earlier candidate of `earlier` (closest first, with its index) from a neighbouring
 /// leaf pair (points within the sum of the two candidates' radii on both sides, so that the
 /// pairs' balls meet on both sides) is certainly closer (`lower`), while `f` is no local
-/// minimum of the mesh distance (`is_minimum`). Along a valley of the
-/// distance that falls faster than the meshes' error, every candidate but the lowest has such
-/// a neighbour, so the valley gets one seed; two minima keep a seed each, as the distance rises
-/// between them (up to the leaves' resolution, as for [`Found::radius`]).
+/// minimum of the mesh distance (`is_minimum`). Along a valley of the distance that falls
+/// faster than the meshes' error, every candidate but the lowest has such a neighbour, so the
+/// valley gets one seed; two minima keep a seed each, as the distance rises between them (up
+/// to the leaves' resolution, as for [`Found::radius`]).
 ///
 /// Certainly closer: the neighbour's mesh distance plus its error bound, or the exact distance
 /// between its seed's surface points ([`seed_distance`], a distance the solids attain there),
