@@ -605,11 +605,11 @@ fn mesh_local_minimum(
     side_a.prepared.rings.holding(ta, ca, ba, ZERO, rings_a);
     side_b.prepared.rings.holding(tb, cb, bb, ZERO, rings_b);
     // A few triangles a side (one to a vertex's ring): B's are moved per pair, not stored.
+    let threshold = f.rank.1 - allowance;
     rings_a.iter().all(|&t| {
         let corners_a = ma.triangle(t as usize);
         rings_b.iter().all(|&u| {
             let corners_b = mb.triangle(u as usize).map(|p| *pose_ab * p);
-            let threshold = f.rank.1 - allowance;
             normals_gap(&corners_a, &corners_b) >= threshold
                 || closest_between_triangles(&corners_a, &corners_b).distance >= threshold
         })

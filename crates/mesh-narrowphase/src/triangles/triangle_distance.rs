@@ -263,49 +263,41 @@ pub fn closest_between_segment_and_triangle(
 /// parallel triangles facing each other, the common case of close surfaces.
 #[must_use]
 pub fn normals_gap(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> f64 {
-    let along = |axis: DVec3| {
-        let (p, q, r) = (axis.dot(t1[0]), axis.dot(t1[1]), axis.dot(t1[2]));
-        let (u, v, w) = (axis.dot(t2[0]), axis.dot(t2[1]), axis.dot(t2[2]));
-        let gap = (u.min(v).min(w) - p.max(q).max(r)).max(p.min(q).min(r) - u.max(v).max(w));
+    let normal = |t: &[DVec3; 3]| (t[1] - t[0]).cross(t[2] - t[1]);
+    axis_gap(t1, t2, normal(t1)).max(axis_gap(t1, t2, normal(t2)))
+}
+
+/// The gap (mm) between the projections of two triangles onto `axis` (any length), 0 where
+/// they overlap or the axis vanishes. The projections are taken onto the unnormalised axis;
+/// the square root only for a separating one.
+fn axis_gap(t1: &[DVec3; 3], t2: &[DVec3; 3], axis: DVec3) -> f64 {
+    let (p, q, r) = (axis.dot(t1[0]), axis.dot(t1[1]), axis.dot(t1[2]));
+    let (u, v, w) = (axis.dot(t2[0]), axis.dot(t2[1]), axis.dot(t2[2]));
+    let gap = (u.min(v).min(w) - p.max(q).max(r)).max(p.min(q).min(r) - u.max(v).max(w));
+    if gap > 0.0 {
         let length = axis.length();
-        if gap > 0.0 && length > 0.0 {
-            gap / length
-        } else {
-            0.0
+        if length > 0.0 {
+            return gap / length;
         }
-    };
-    along((t1[1] - t1[0]).cross(t1[2] - t1[0])).max(along((t2[1] - t2[0]).cross(t2[2] - t2[0])))
+    }
+    0.0
 }
 
 /// A lower bound (mm) on the distance between two triangles by separating axes: the largest
-/// gap between their projections onto the two triangles' normals and the nine cross products
-/// of an edge of each, over the axes' lengths (a projection onto a unit vector does not
-/// increase distances). Two triangles are disjoint exactly when one of these axes separates
-/// them (the separating axis theorem for convex polytopes), so the bound is positive exactly
-/// for disjoint triangles, up to rounding; 0 when no axis separates them (and for degenerate
-/// triangles whose axes all vanish).
+/// gap between their projections onto the two triangles' normals ([`normals_gap`]) and the nine
+/// cross products of an edge of each, over the axes' lengths (a projection onto a unit vector
+/// does not increase distances). Two triangles are disjoint exactly when one of these axes
+/// separates them (the separating axis theorem for convex polytopes), so the bound is positive
+/// exactly for disjoint triangles, up to rounding; 0 when no axis separates them (and for
+/// degenerate triangles whose axes all vanish).
 #[must_use]
 pub fn separating_gap(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> f64 {
     let e1 = [t1[1] - t1[0], t1[2] - t1[1], t1[0] - t1[2]];
     let e2 = [t2[1] - t2[0], t2[2] - t2[1], t2[0] - t2[2]];
-    let mut best = 0.0_f64;
-    let mut along = |axis: DVec3| {
-        // Projections onto the unnormalised axis; the square root only for a separating one.
-        let (p, q, r) = (axis.dot(t1[0]), axis.dot(t1[1]), axis.dot(t1[2]));
-        let (u, v, w) = (axis.dot(t2[0]), axis.dot(t2[1]), axis.dot(t2[2]));
-        let gap = (u.min(v).min(w) - p.max(q).max(r)).max(p.min(q).min(r) - u.max(v).max(w));
-        if gap > 0.0 {
-            let length = axis.length();
-            if length > 0.0 {
-                best = best.max(gap / length);
-            }
-        }
-    };
-    along(e1[0].cross(e1[1]));
-    along(e2[0].cross(e2[1]));
+    let mut best = normals_gap(t1, t2);
     for a in e1 {
         for b in e2 {
-            along(a.cross(b));
+            best = best.max(axis_gap(t1, t2, a.cross(b)));
         }
     }
     best
