@@ -224,11 +224,11 @@ pub(crate) fn solve_penetration_from(
     end(cur, steps + options.max_iterations, outcome)
 }
 
-/// Whether the nested solve's pair `state` is stationary in the depth D (value and scaled
-/// gradient `depth` over the outer variables): f stationary, and not on the intersection curve,
-/// where f is stationary too but D still rises (its gradient is the sine of the crossing angle
-/// there), D's slope at most 1e-6 plus its rounding noise 2·floor/|D| (none below 1e3 ε x
-/// scale, where D itself is rounding).
+/// Whether the nested solve's pair `state` is stationary in the depth D (`merit`, and its
+/// scaled `gradient` over the outer variables, from [`depth`]): f stationary, and not on the
+/// intersection curve, where f is stationary too but D still rises (its gradient is the sine
+/// of the crossing angle there): D's slope at most 1e-6 plus its rounding noise 2·floor/|D|
+/// (none below 1e3 ε x scale, where D itself is rounding).
 fn depth_settled(
     state: &State,
     (merit, gradient): (f64, &[f64; 4]),
