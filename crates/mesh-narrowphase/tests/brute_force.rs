@@ -477,3 +477,68 @@ fn segment_triangle_closest_points_match_a_convex_search() {
         }
     }
 }
+
+/// The closest points of two disjoint triangles against the least of the six edge-against-
+/// triangle distances (one of the two closest points lies on an edge of its triangle; the
+/// segment-triangle distance is checked against a convex search above), on random pairs:
+/// general positions, nearly parallel triangles facing each other (close surfaces, where many
+/// cases tie), a corner over the other's interior, and slivers. The distance returned is that
+/// minimum, and its points lie on the triangles (by their barycentric coordinates) at that
+/// distance.
+#[test]
+fn triangle_closest_points_match_the_edge_triangle_minimum() {
+    use mesh_narrowphase::triangles::triangle_distance::{
+        closest_between_segment_and_triangle, closest_between_triangles, separating_gap,
+    };
+    let mut rng = Rng(4242);
+    let point = |rng: &mut Rng, scale: f64| {
+        DVec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0) * scale,
+        )
+    };
+    let mut checked = 0;
+    for case in 0..3000 {
+        // Flat triangles (z squeezed) one above the other for cases 1 and 2 of 3.
+        let flat = if case % 3 == 0 { 1.0 } else { 1e-3 };
+        let t1 = [(); 3].map(|_| point(&mut rng, flat));
+        let lift = DVec3::new(0.0, 0.0, rng.range(0.01, 1.0));
+        let mut t2 = [(); 3].map(|_| point(&mut rng, flat) + lift);
+        if case % 7 == 0 {
+            // A sliver: the third corner almost on the first side.
+            t2[2] = t2[0] + (t2[1] - t2[0]) * 0.3 + DVec3::splat(1e-9);
+        }
+        if separating_gap(&t1, &t2) <= 1e-6 {
+            continue;
+        }
+        checked += 1;
+        let pair = closest_between_triangles(&t1, &t2);
+        let mut truth = f64::INFINITY;
+        for (s, t) in [(&t1, &t2), (&t2, &t1)] {
+            for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+                truth = truth.min(closest_between_segment_and_triangle(s[i], s[j], t).2);
+            }
+        }
+        assert!(
+            (pair.distance - truth).abs() <= 1e-12 * (1.0 + truth),
+            "case {case}: {} vs {truth}",
+            pair.distance
+        );
+        for (p, t) in [(&pair.a, &t1), (&pair.b, &t2)] {
+            let b = p.barycentric;
+            assert!(
+                b.iter().all(|&x| (-1e-12..=1.0 + 1e-12).contains(&x))
+                    && (b[0] + b[1] + b[2] - 1.0).abs() <= 1e-12,
+                "case {case}: {b:?}"
+            );
+            let from_b = t[0] * b[0] + t[1] * b[1] + t[2] * b[2];
+            assert!(from_b.distance(p.point) <= 1e-12, "case {case}: {p:?}");
+        }
+        assert!(
+            (pair.a.point.distance(pair.b.point) - pair.distance).abs() <= 1e-15,
+            "case {case}"
+        );
+    }
+    assert!(checked > 2000, "{checked} disjoint pairs");
+}
