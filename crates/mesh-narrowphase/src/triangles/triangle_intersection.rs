@@ -22,12 +22,14 @@
 //!   finally clamped into the intersection of the two bounding boxes, which contains the true
 //!   common set. The order of a coplanar overlap polygon is decided in f64 (by angle around its
 //!   centroid).
-//! * **Scale.** The inputs are first scaled by a power of two (exactly) so that their largest
-//!   coordinate magnitude `M` lies in `[1, 2)`, and the results scaled back, so any finite input is
-//!   handled without overflow. Shewchuk's predicates are exact as long as no intermediate product
-//!   underflows; after this scaling that is guaranteed when every non-zero coordinate, and every
-//!   non-zero difference of two coordinates along the same axis, is at least `2^-250 M`
-//!   (about `5e-76 M`). Smaller ones may make a decision inexact, never a panic or a NaN.
+//! * **Scale.** Inputs whose largest coordinate magnitude `M` lies outside `[1, 2^64)` are first
+//!   scaled by a power of two (exactly) so that it lies in `[1, 2)`, and the results scaled back,
+//!   so any finite input is handled without overflow (inputs in that range are used as they
+//!   are: scaling by a power of two changes no rounding). Shewchuk's predicates are exact as
+//!   long as no intermediate product underflows; that is guaranteed when every non-zero
+//!   coordinate, and every non-zero difference of two coordinates along the same axis, is at
+//!   least `2^-250 M` (about `5e-76 M`). Smaller ones may make a decision inexact, never a
+//!   panic or a NaN.
 //! * **Degenerate triangles** (three collinear points or repeated points) are treated as the
 //!   segment or point they are, and their contacts are reported as [`TriangleContact::Segment`]
 //!   (the common set of a segment or point with anything is a segment or point).
@@ -144,89 +146,113 @@ impl Deref for OverlapPolygon {
 /// [`TriangleContact::Disjoint`] when they share no point or when any coordinate is NaN or
 /// infinite. Never panics; every returned coordinate is finite.
 pub fn intersect_triangles(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> TriangleContact {
-    let Some(frame) = Frame::new(t1, t2) else {
-        return TriangleContact::Disjoint;
-    };
-    let (a, b) = (&frame.t1, &frame.t2);
-    let contact = match Stage::of(a, b) {
+    let contact_of = |a: &[DVec3; 3], b: &[DVec3; 3]| match Stage::of(a, b) {
         Stage::Separated => TriangleContact::Disjoint,
         Stage::Crossing { s1, s2 } => Intervals::new(a, b, &s1, &s2).segment(a, b),
         Stage::Special => special_contact(a, b, false),
     };
-    frame.finish(contact)
+    match Frame::new(t1, t2) {
+        None => TriangleContact::Disjoint,
+        Some(Frame::AsGiven) => clamp_into_boxes(contact_of(t1, t2), (t1, t2), 1.0),
+        Some(Frame::Scaled { t1, t2, up }) => {
+            clamp_into_boxes(contact_of(&t1, &t2), (&t1, &t2), up[0] * up[1])
+        }
+    }
 }
 
 /// Whether two closed triangles share at least one point: the same exact decision as
 /// [`intersect_triangles`] (`false` exactly when it returns [`TriangleContact::Disjoint`]),
 /// without computing any point in the common (non-degenerate) cases. Meant for BVH traversal.
 pub fn triangles_intersect(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
-    let Some(frame) = Frame::new(t1, t2) else {
-        return false;
-    };
-    let (a, b) = (&frame.t1, &frame.t2);
-    match Stage::of(a, b) {
+    let meet = |a: &[DVec3; 3], b: &[DVec3; 3]| match Stage::of(a, b) {
         Stage::Separated => false,
         Stage::Crossing { s1, s2 } => Intervals::new(a, b, &s1, &s2).overlaps(),
         Stage::Special => !matches!(special_contact(a, b, true), TriangleContact::Disjoint),
+    };
+    match Frame::new(t1, t2) {
+        None => false,
+        Some(Frame::AsGiven) => meet(t1, t2),
+        Some(Frame::Scaled { t1, t2, .. }) => meet(&t1, &t2),
     }
 }
 
 // ---------------------------------------------------------------------------------------------
 // Input scaling and output clamping.
 
-/// The two triangles scaled by a power of two (exactly) so that their largest coordinate
-/// magnitude lies in `[1, 2)`, with what is needed to map results back.
-struct Frame {
-    t1: [DVec3; 3],
-    t2: [DVec3; 3],
-    /// Two factors whose product undoes the scaling (each a representable power of two).
-    up: [f64; 2],
+/// The coordinates the predicates run on: the inputs as they are when their largest magnitude
+/// `M` lies in `[1, 2^64)`, else scaled by a power of two (exactly) so that it lies in `[1, 2)`.
+/// In that range no product of the predicates (of degree 3 in the coordinates, with their
+/// round-off tails) overflows, and none of coordinates or differences at least `2^-250` (the
+/// contract's bound for scaled inputs, as `M >= 1`) underflows; scaling by a power of two
+/// changes no rounding, so the decisions and points are those of the scaled inputs. (Scaling
+/// every pair was a ninth of an exact test's cost on a pencil through a bowl's wall.)
+enum Frame {
+    /// The inputs need no scaling.
+    AsGiven,
+    /// The two triangles scaled, with two factors whose product undoes the scaling (each a
+    /// representable power of two).
+    Scaled {
+        t1: [DVec3; 3],
+        t2: [DVec3; 3],
+        up: [f64; 2],
+    },
 }
 
 impl Frame {
     /// `None` if any coordinate is not finite.
     fn new(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> Option<Self> {
-        if !t1.iter().chain(t2).all(|p| p.is_finite()) {
+        // 0 p is ±0 for a finite coordinate and NaN for an infinite or NaN one, and a NaN
+        // survives the sum (where a maximum would drop it).
+        let [a, b, c] = *t1;
+        let [d, e, f] = *t2;
+        if a * 0.0 + b * 0.0 + c * 0.0 + d * 0.0 + e * 0.0 + f * 0.0 != DVec3::ZERO {
             return None;
         }
-        let m = t1
-            .iter()
-            .chain(t2)
-            .fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        let m = (a.abs().max(b.abs()).max(c.abs()))
+            .max(d.abs().max(e.abs()).max(f.abs()))
+            .max_element();
         // m = f 2^e with f in [1, 2) (a subnormal m reads as e = -1023 and is scaled by 2^1023,
-        // which is exact too). Scale by 2^-e in two steps so that each factor is a normal power
-        // of two.
+        // which is exact too).
         let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+        if (0..64).contains(&e) {
+            return Some(Self::AsGiven);
+        }
+        // Scale by 2^-e in two steps so that each factor is a normal power of two.
         let k1 = -e / 2;
         let k2 = -e - k1;
         let (d1, d2) = (pow2(k1), pow2(k2));
         let scale = |t: &[DVec3; 3]| t.map(|p| p * d1 * d2);
-        Some(Self {
+        Some(Self::Scaled {
             t1: scale(t1),
             t2: scale(t2),
             up: [pow2(-k1), pow2(-k2)],
         })
     }
+}
 
-    /// Clamps every point into the intersection of the two bounding boxes (which contains the
-    /// true common set) and undoes the scaling.
-    fn finish(&self, contact: TriangleContact) -> TriangleContact {
-        let lo = min3(&self.t1).max(min3(&self.t2));
-        let hi = max3(&self.t1).min(max3(&self.t2));
-        let map = |p: DVec3| p.max(lo).min(hi) * self.up[0] * self.up[1];
-        match contact {
-            TriangleContact::Disjoint => TriangleContact::Disjoint,
-            TriangleContact::Segment { a, b } => TriangleContact::Segment {
-                a: map(a),
-                b: map(b),
-            },
-            TriangleContact::Coplanar { mut points } => {
-                let len = points.len;
-                for p in &mut points.buf[..len] {
-                    *p = map(*p);
-                }
-                TriangleContact::Coplanar { points }
+/// Clamps every point of `contact` into the intersection of the bounding boxes of `t1` and `t2`
+/// (which contains the true common set) and multiplies it by `up` (undoing a [`Frame`]'s
+/// scaling; a power of two, so exact, or 1).
+fn clamp_into_boxes(
+    contact: TriangleContact,
+    (t1, t2): (&[DVec3; 3], &[DVec3; 3]),
+    up: f64,
+) -> TriangleContact {
+    let lo = min3(t1).max(min3(t2));
+    let hi = max3(t1).min(max3(t2));
+    let map = |p: DVec3| p.max(lo).min(hi) * up;
+    match contact {
+        TriangleContact::Disjoint => TriangleContact::Disjoint,
+        TriangleContact::Segment { a, b } => TriangleContact::Segment {
+            a: map(a),
+            b: map(b),
+        },
+        TriangleContact::Coplanar { mut points } => {
+            let len = points.len;
+            for p in &mut points.buf[..len] {
+                *p = map(*p);
             }
+            TriangleContact::Coplanar { points }
         }
     }
 }
@@ -268,9 +294,28 @@ fn side_magnitude(t: &[DVec3; 3], p: DVec3) -> f64 {
     orient3d_f64(t[0], t[1], t[2], p).map_or_else(|| -orient3d_dd(t[0], t[1], t[2], p), |v| -v)
 }
 
-/// Sides of the vertices of `pts` relative to the plane of `t`.
-fn sides(t: &[DVec3; 3], pts: &[DVec3; 3]) -> [f64; 3] {
-    pts.map(|p| side(t, p))
+/// Sides of the vertices of `pts` relative to the plane of `t` ([`side`]'s exact signs), each
+/// with its magnitude certified where the plain evaluation certifies it ([`side_magnitude`]'s
+/// first step, so that a crossing point need not evaluate it again).
+fn sides(t: &[DVec3; 3], pts: &[DVec3; 3]) -> Sides {
+    let mut certified = [false; 3];
+    let mut value = [0.0; 3];
+    for k in 0..3 {
+        (value[k], certified[k]) = match orient3d_f64(t[0], t[1], t[2], pts[k]) {
+            Some(v) => (-v, true),
+            None => (side(t, pts[k]), false),
+        };
+    }
+    Sides { value, certified }
+}
+
+/// The sides of a triangle's three vertices relative to the other triangle's plane ([`sides`]).
+#[derive(Clone, Copy)]
+struct Sides {
+    /// Exact in sign.
+    value: [f64; 3],
+    /// Whether each value's magnitude is [`side_magnitude`]'s too.
+    certified: [bool; 3],
 }
 
 fn strictly_one_side(s: &[f64; 3]) -> bool {
@@ -339,7 +384,7 @@ enum Stage {
     Separated,
     /// Both triangles are non-degenerate and cross (or touch) each other's plane transversally;
     /// `s1` are the sides of t1's vertices relative to the plane of t2, `s2` the converse.
-    Crossing { s1: [f64; 3], s2: [f64; 3] },
+    Crossing { s1: Sides, s2: Sides },
     /// Coplanar, or at least one triangle degenerate.
     Special,
 }
@@ -347,17 +392,17 @@ enum Stage {
 impl Stage {
     fn of(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> Self {
         let s2 = sides(t1, t2);
-        if strictly_one_side(&s2) {
+        if strictly_one_side(&s2.value) {
             return Self::Separated;
         }
         let s1 = sides(t2, t1);
-        if strictly_one_side(&s1) {
+        if strictly_one_side(&s1.value) {
             return Self::Separated;
         }
         // A degenerate triangle has every point on its "plane": all sides against it vanish.
         // Some non-zero side on each side therefore means both triangles are non-degenerate and
         // not coplanar.
-        if s1.iter().all(|&v| v == 0.0) || s2.iter().all(|&v| v == 0.0) {
+        if s1.value.iter().all(|&v| v == 0.0) || s2.value.iter().all(|&v| v == 0.0) {
             return Self::Special;
         }
         Self::Crossing { s1, s2 }
@@ -373,6 +418,8 @@ struct Crossing {
     neg: DVec3,
     pos_side: f64,
     neg_side: f64,
+    /// Whether `pos_side` and `neg_side` are certified magnitudes ([`Sides::certified`]).
+    certified: [bool; 2],
 }
 
 impl Crossing {
@@ -388,8 +435,15 @@ impl Crossing {
         } else if self.pos_side == 0.0 {
             self.pos
         } else {
-            let fp = refine(self.pos_side, side_magnitude(plane, self.pos));
-            let fn_ = refine(self.neg_side, side_magnitude(plane, self.neg));
+            let magnitude = |value: f64, certified: bool, p: DVec3| {
+                if certified {
+                    value
+                } else {
+                    refine(value, side_magnitude(plane, p))
+                }
+            };
+            let fp = magnitude(self.pos_side, self.certified[0], self.pos);
+            let fn_ = magnitude(self.neg_side, self.certified[1], self.neg);
             lerp_zero(self.pos, self.neg, fp, fn_)
         }
     }
@@ -406,7 +460,8 @@ fn order(c1: &Crossing, c2: &Crossing) -> f64 {
 
 /// The interval `t ∩ plane(other)` as `(first, last)` crossings along `n_t × n_other`, given the
 /// sides `s` of the vertices of `t` (not all zero, not all strictly of one sign).
-fn interval(t: &[DVec3; 3], s: &[f64; 3]) -> (Crossing, Crossing) {
+fn interval(t: &[DVec3; 3], sides: &Sides) -> (Crossing, Crossing) {
+    let (s, c) = (&sides.value, &sides.certified);
     for i in 0..3 {
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);
         // (t[i], t[j], t[k]) keeps the orientation of t. With t[i] alone on the positive side,
@@ -418,12 +473,14 @@ fn interval(t: &[DVec3; 3], s: &[f64; 3]) -> (Crossing, Crossing) {
                 neg: t[j],
                 pos_side: s[i],
                 neg_side: s[j],
+                certified: [c[i], c[j]],
             };
             let y = Crossing {
                 pos: t[i],
                 neg: t[k],
                 pos_side: s[i],
                 neg_side: s[k],
+                certified: [c[i], c[k]],
             };
             return (y, x);
         }
@@ -433,12 +490,14 @@ fn interval(t: &[DVec3; 3], s: &[f64; 3]) -> (Crossing, Crossing) {
                 neg: t[i],
                 pos_side: s[j],
                 neg_side: s[i],
+                certified: [c[j], c[i]],
             };
             let y = Crossing {
                 pos: t[k],
                 neg: t[i],
                 pos_side: s[k],
                 neg_side: s[i],
+                certified: [c[k], c[i]],
             };
             return (x, y);
         }
@@ -453,6 +512,7 @@ fn interval(t: &[DVec3; 3], s: &[f64; 3]) -> (Crossing, Crossing) {
             neg: t[i],
             pos_side: s[j],
             neg_side: s[i],
+            certified: [c[j], c[i]],
         }
     } else {
         Crossing {
@@ -460,6 +520,7 @@ fn interval(t: &[DVec3; 3], s: &[f64; 3]) -> (Crossing, Crossing) {
             neg: t[j],
             pos_side: s[i],
             neg_side: s[j],
+            certified: [c[i], c[j]],
         }
     };
     (c, c)
@@ -474,7 +535,7 @@ struct Intervals {
 }
 
 impl Intervals {
-    fn new(t1: &[DVec3; 3], t2: &[DVec3; 3], s1: &[f64; 3], s2: &[f64; 3]) -> Self {
+    fn new(t1: &[DVec3; 3], t2: &[DVec3; 3], s1: &Sides, s2: &Sides) -> Self {
         let (lo1, hi1) = interval(t1, s1);
         // Along n1 × n2 the interval of t2 runs the other way (its rule is stated along n2 × n1).
         let (hi2, lo2) = interval(t2, s2);
