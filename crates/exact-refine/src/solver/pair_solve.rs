@@ -267,8 +267,9 @@ fn ridge_witness(
 /// Newton on two edges (each face point within the gap |d| of a side put on it, when that
 /// gives an edge on both sides); then the nested solver from each face point within
 /// √ε x max(1, |P|) mm of a side put on that side ([`snap_to_sides`]), when that moves one;
-/// failing that, from each edge point moved just inside each adjacent face ([`into_faces`]).
-/// The first restart that converges is the answer; `deep` when none does.
+/// failing that, from each edge point moved just inside each adjacent face ([`into_faces`]),
+/// the other side as it is and then, where its point lies within the gap |d| of a side, on that
+/// side. The first restart that converges is the answer; `deep` when none does.
 ///
 /// Why: where the witness is on a smooth edge (equal normals on both sides, the goblet's
 /// z = 150 rim joint), the face-face solve approaches the side without reaching it (v = 1 −
@@ -317,6 +318,21 @@ pub(crate) fn retry_on_sides(
     }
     starts.extend(into_faces(a, la).into_iter().map(|fa| (fa, lb)));
     starts.extend(into_faces(b, lb).into_iter().map(|fb| (la, fb)));
+    // Both sides moved at once: one side's edge into its faces, the other's face point onto
+    // its edge. A straight edge 7.0e-4 mm inside a pencil's cylinder just above its ridge
+    // stalled ridge against the face beside the edge, and each restart moving one side
+    // stalled too; the witness is the edge against the cylinder (pencil-bracket
+    // 15275829082547009235 of `soak 2000 --general --seed 13244`).
+    let (ea, eb) = (
+        snap_within_distance(a, la, reach),
+        snap_within_distance(b, lb, reach),
+    );
+    if feature(&eb) != feature(&lb) {
+        starts.extend(into_faces(a, la).into_iter().map(|fa| (fa, eb)));
+    }
+    if feature(&ea) != feature(&la) {
+        starts.extend(into_faces(b, lb).into_iter().map(|fb| (ea, fb)));
+    }
     let mut iterations = deep.iterations;
     for (ra, rb) in starts {
         let again = solve_penetration(a, b, ra, rb, base_scale, options);
