@@ -6,7 +6,7 @@
 
 use crate::cones::normal_cone::{CriticalKinds, NormalBand, NormalCone};
 use crate::cones::patch_tree::{PatchLeaf, PatchNode, PatchTree};
-use crate::triangles::triangle_distance::{closest_between_triangles, separating_gap};
+use crate::triangles::triangle_distance::separating_gap;
 use geom_param::DPose3;
 use glam::{DMat3, DVec3};
 
@@ -375,54 +375,26 @@ fn directions(d: DVec3, length: f64, radii: f64) -> NormalCone {
     }
 }
 
-/// Two leaves' triangles (B's posed by `frame`) and their separating-axis gap
-/// ([`separating_gap`]) less a rounding allowance (1e-9 of the coordinates' magnitude):
-/// positive only for triangles apart; `None` for a node without a piece.
+/// The separating-axis gap ([`separating_gap`]) between two leaves' triangles (B's posed by
+/// `frame`) less a rounding allowance (1e-9 of the coordinates' magnitude): positive only for
+/// triangles apart; `None` for a node without a piece.
 fn leaf_triangles_gap(
     (tree_a, a): (&PatchTree, &PatchNode),
     (tree_b, b): (&PatchTree, &PatchNode),
     frame: &PairFrame,
-) -> Option<LeafTriangles> {
+) -> Option<f64> {
     let corners = |tree: &PatchTree, node: &PatchNode| match node.leaf {
         PatchLeaf::Piece(k) => tree.pieces.get(k as usize).map(|p| p.corners),
         PatchLeaf::Inner => None,
     };
     let ta = corners(tree_a, a)?;
     let tb = corners(tree_b, b)?.map(|p| frame.rotation * p + frame.translation);
-    let allowance = 1e-9
-        * ta.iter()
-            .chain(tb.iter())
-            .map(|p| p.abs().max_element())
-            .fold(0.0, f64::max);
-    Some(LeafTriangles {
-        gap: separating_gap(&ta, &tb) - allowance,
-        corners: [ta, tb],
-        allowance,
-    })
-}
-
-/// A leaf pair's triangles in A's frame with their separating gap ([`leaf_triangles_gap`]).
-struct LeafTriangles {
-    /// The separating-axis gap less the rounding allowance (mm).
-    gap: f64,
-    corners: [[DVec3; 3]; 2],
-    /// The rounding allowance (mm).
-    allowance: f64,
-}
-
-impl LeafTriangles {
-    /// A lower bound (mm) on the triangles' distance: their exact distance
-    /// ([`closest_between_triangles`], less the rounding allowance) where the separating gap
-    /// shows them apart (for triangles that meet that function's distance may be positive),
-    /// else the gap.
-    fn distance_bound(&self) -> f64 {
-        if self.gap > 0.0 {
-            let [ta, tb] = &self.corners;
-            (closest_between_triangles(ta, tb).distance - self.allowance).max(self.gap)
-        } else {
-            self.gap
-        }
-    }
+    let magnitude = ta
+        .iter()
+        .chain(tb.iter())
+        .map(|p| p.abs().max_element())
+        .fold(0.0, f64::max);
+    Some(separating_gap(&ta, &tb) - 1e-9 * magnitude)
 }
 
 /// The deviation bound (mm) of a leaf's piece from its exact surface (infinite for a node
@@ -665,8 +637,7 @@ pub fn traverse(
                 // ball spans its triangle, far wider than the gaps of a conformal contact (a
                 // pencil in a tube: three in four such leaf pairs had triangles beyond the
                 // reach), and triangles apart need no exact intersection test.
-                let triangles = leaf_triangles_gap((tree_a, a), (tree_b, b), frame);
-                let gap = triangles.as_ref().map(|t| t.gap);
+                let gap = leaf_triangles_gap((tree_a, a), (tree_b, b), frame);
                 let meshes_may_meet = meshes_may_meet && gap.is_none_or(|g| g <= 0.0);
                 let stop = StopPair {
                     meshes_may_meet,
@@ -674,24 +645,8 @@ pub fn traverse(
                 };
                 if critical {
                     // The exact patches lie within their pieces' deviations of the triangles.
-                    // The separating gap first, then, where it shows the triangles apart but
-                    // not beyond the reach, their exact distance: the gap is far below the
-                    // distance for triangles that do not face each other (a pencil leaning in
-                    // a tube: 12 of its 28 seeded leaf pairs had triangles 0.22 to 0.56 mm
-                    // apart, beyond the reach of 0.1, with gaps of 0.01 to 0.14), and such a
-                    // pair, dropped here, is carried dropped instead of having its closest
-                    // points computed every query.
                     let deviations = piece_deviation(tree_a, a) + piece_deviation(tree_b, b);
-                    let bound = |t: &LeafTriangles| {
-                        if t.gap - deviations > reach {
-                            t.gap
-                        } else {
-                            t.distance_bound()
-                        }
-                    };
-                    let lower = triangles
-                        .as_ref()
-                        .map_or(f64::NEG_INFINITY, |t| bound(t) - deviations);
+                    let lower = gap.map_or(f64::NEG_INFINITY, |g| g - deviations);
                     if lower > reach {
                         out.front.push(stopped(lower - reach - moved));
                         continue;
