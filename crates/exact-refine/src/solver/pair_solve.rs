@@ -316,8 +316,9 @@ pub(crate) fn retry_on_sides(
     if feature(&sa) != feature(&la) || feature(&sb) != feature(&lb) {
         starts.push((sa, sb));
     }
-    starts.extend(into_faces(a, la).into_iter().map(|fa| (fa, lb)));
-    starts.extend(into_faces(b, lb).into_iter().map(|fb| (la, fb)));
+    let (faces_a, faces_b) = (into_faces(a, la), into_faces(b, lb));
+    starts.extend(faces_a.iter().map(|&fa| (fa, lb)));
+    starts.extend(faces_b.iter().map(|&fb| (la, fb)));
     // Both sides moved at once: one side's edge into its faces, the other's face point onto
     // its edge. A straight edge 7.0e-4 mm inside a pencil's cylinder just above its ridge
     // stalled ridge against the face beside the edge, and each restart moving one side
@@ -328,10 +329,10 @@ pub(crate) fn retry_on_sides(
         snap_within_distance(b, lb, reach),
     );
     if feature(&eb) != feature(&lb) {
-        starts.extend(into_faces(a, la).into_iter().map(|fa| (fa, eb)));
+        starts.extend(faces_a.iter().map(|&fa| (fa, eb)));
     }
     if feature(&ea) != feature(&la) {
-        starts.extend(into_faces(b, lb).into_iter().map(|fb| (ea, fb)));
+        starts.extend(faces_b.iter().map(|&fb| (ea, fb)));
     }
     let mut iterations = deep.iterations;
     for (ra, rb) in starts {

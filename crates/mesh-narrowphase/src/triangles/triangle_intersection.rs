@@ -182,9 +182,10 @@ pub fn triangles_intersect(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> bool {
 /// The coordinates the predicates run on: the inputs as they are when their largest magnitude
 /// `M` lies in `[1, 2^64)`, else scaled by a power of two (exactly) so that it lies in `[1, 2)`.
 /// In that range no product of the predicates (of degree 3 in the coordinates, with their
-/// round-off tails) overflows, and none of coordinates or differences at least `2^-250` (the
-/// contract's bound for scaled inputs, as `M >= 1`) underflows; scaling by a power of two
-/// changes no rounding, so the decisions and points are those of the scaled inputs. (Scaling
+/// round-off tails) overflows, and no product of coordinates or differences of at least
+/// `2^-250 M` (the module's bound, at least `2^-250` as `M >= 1`) underflows; and scaling by a
+/// power of two changes no rounding, so the decisions and points are those of the scaled
+/// inputs. (Scaling
 /// every pair was a ninth of an exact test's cost on a pencil through a bowl's wall.)
 enum Frame {
     /// The inputs need no scaling.
