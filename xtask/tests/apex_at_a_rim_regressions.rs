@@ -65,6 +65,18 @@ fn flipped_below_delta1(a: &str, b: &str, pose: DPose3, eps: f64) -> (Contact, D
     (c, c.point_b + c.normal * s, moved)
 }
 
+/// Today's answer at the moved pose (the FIXME): one contact, of the wall (A's face `wall`)
+/// and the sharp point (B's vertex `vertex`, at `sharp`), which the test then weighs.
+fn wall_answer(moved: &PairReport, wall: FaceId, vertex: VertexId, sharp: DVec3) -> Contact {
+    assert_eq!(moved.state, PairState::Contact, "{moved:?}");
+    assert_eq!(moved.contacts.len(), 1, "{moved:?}");
+    let got = moved.contacts[0];
+    assert_eq!(got.location_a.feature(), FeatureId::Face(wall));
+    assert_eq!(got.location_b.feature(), FeatureId::Vertex(vertex));
+    assert!(got.point_b.distance(sharp) <= 1e-9, "{got:?}");
+    got
+}
+
 #[test]
 fn an_apex_past_a_rim_is_answered_against_the_wall_not_as_the_rim_witness() {
     let pose = DPose3 {
@@ -95,12 +107,7 @@ fn an_apex_past_a_rim_is_answered_against_the_wall_not_as_the_rim_witness() {
     assert!((to_bottom - 6.5387e-4).abs() <= 1e-8, "{to_bottom}");
     // Today's answer: a contact of the wall and the apex, 9.995e-4 mm deep, farther from the
     // apex than the bottom is.
-    assert_eq!(moved.state, PairState::Contact, "{moved:?}");
-    assert_eq!(moved.contacts.len(), 1, "{moved:?}");
-    let got = moved.contacts[0];
-    assert_eq!(got.location_a.feature(), FeatureId::Face(FaceId(1)));
-    assert_eq!(got.location_b.feature(), FeatureId::Vertex(VertexId(1)));
-    assert!(got.point_b.distance(apex) <= 1e-9, "{got:?}");
+    let got = wall_answer(&moved, FaceId(1), VertexId(1), apex);
     assert!((got.distance + 9.9946e-4).abs() <= 1e-8, "{got:?}");
     assert!(-got.distance > to_bottom, "{got:?}");
 }
@@ -138,12 +145,7 @@ fn a_corner_past_a_goblet_rim_is_answered_against_the_wall_not_as_the_rim_witnes
     assert!((to_top - 2.412e-4).abs() <= 1e-7, "{to_top}");
     // Today's answer: a contact of the wall and the corner, 9.706e-4 mm deep, farther from the
     // corner than the top is.
-    assert_eq!(moved.state, PairState::Contact, "{moved:?}");
-    assert_eq!(moved.contacts.len(), 1, "{moved:?}");
-    let got = moved.contacts[0];
-    assert_eq!(got.location_a.feature(), FeatureId::Face(FaceId(7)));
-    assert_eq!(got.location_b.feature(), FeatureId::Vertex(VertexId(0)));
-    assert!(got.point_b.distance(corner) <= 1e-9, "{got:?}");
+    let got = wall_answer(&moved, FaceId(7), VertexId(0), corner);
     assert!((got.distance + to_wall).abs() <= 1e-9, "{got:?}");
     assert!(-got.distance > to_top, "{got:?}");
 }
