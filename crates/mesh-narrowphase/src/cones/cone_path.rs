@@ -402,6 +402,15 @@ fn judge(
         });
         near || inside
     };
+    // A certified pair's or an apex's candidate is only ever a duplicate of a kept one or
+    // kept: the ridge, mesh-minimum and superseding rules below are a leaf pair's.
+    if f.leaf.is_none() {
+        return kept
+            .iter()
+            .copied()
+            .find(|&k| near(&found[k]))
+            .map_or(Judged::Kept, Judged::DuplicateOf);
+    }
     // A leaf pair's candidate that a certainly lower one would drop (by the radius rule or as
     // superseded) is kept when it is a local minimum of the mesh distance.
     let mut minimum = None;
@@ -760,9 +769,11 @@ fn node_seed(
     snap: f64,
 ) -> Option<SeedPoint> {
     let snap = snap.max(side.chordal_error()) + 1e-12 * side.size;
-    let (piece, on_piece) = nearest_piece(tree, node, point)
-        .filter(|(_, p)| p.point.distance(point) <= snap)
-        .or_else(|| nearest_piece(tree, 0, point))?;
+    let in_node = nearest_piece(tree, node, point, None);
+    let (piece, on_piece, _) = match in_node {
+        Some(near) if near.2 <= snap => near,
+        beyond => nearest_piece(tree, 0, point, beyond)?,
+    };
     let corner = (0..3).find(|&k| {
         let b = piece.barycentric[k];
         let tri = side.mesh.triangles.get(piece.triangle as usize);
@@ -785,11 +796,17 @@ fn node_seed(
     piece_point(side, piece, barycentric)
 }
 
-/// The point of the pieces under `node` nearest to `point` (the tree's frame): a depth-first
-/// search, nearer child first, that skips subtrees whose balls lie farther than the best
-/// distance so far.
-fn nearest_piece(tree: &PatchTree, node: u32, point: DVec3) -> Option<(&Piece, TrianglePoint)> {
-    let mut best: Option<(&Piece, TrianglePoint, f64)> = None;
+/// The point of the pieces under `node` nearest to `point` (the tree's frame), with its
+/// distance (mm): a depth-first search, nearer child first, that skips subtrees whose balls lie
+/// farther than the best distance so far, starting from `known` (a piece point already found
+/// and its distance, which only a strictly nearer one replaces).
+fn nearest_piece<'t>(
+    tree: &'t PatchTree,
+    node: u32,
+    point: DVec3,
+    known: Option<(&'t Piece, TrianglePoint, f64)>,
+) -> Option<(&'t Piece, TrianglePoint, f64)> {
+    let mut best = known;
     // The tree is balanced: depth below 64 for any mesh that fits in memory.
     let mut stack = [0_u32; 64];
     let mut depth = 1;
@@ -836,7 +853,7 @@ fn nearest_piece(tree: &PatchTree, node: u32, point: DVec3) -> Option<(&Piece, T
             }
         }
     }
-    best.map(|(piece, p, _)| (piece, p))
+    best
 }
 
 /// A leaf's piece with its corners in A's frame: moved by `to_a` (B's frame in A's) for a piece
