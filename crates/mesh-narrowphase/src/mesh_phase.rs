@@ -115,7 +115,8 @@ pub struct ComponentRef<'a, P> {
 /// local minimum has opposite normals along the connecting direction, a penetration witness the
 /// reverse; Johnson & Cohen). A pair whose two patches are smooth, narrow-coned and whose curvature
 /// tensors make the gap between them strictly convex is *certified*: it holds one minimum at most,
-/// and stops there ([`crate::cones::cone_traversal::certificate`]). The rest descend to leaf pairs.
+/// and stops there ([`crate::cones::cone_traversal::certificate`]; two leaves, which stop there
+/// anyway, take the leaf path). The rest descend to leaf pairs.
 /// Apexes (points where a face has no tangent plane) are traversed as points against the other
 /// tree. Then
 /// 1. leaf pairs whose volumes overlap get the exact triangle-triangle test (intersecting

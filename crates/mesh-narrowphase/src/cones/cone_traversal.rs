@@ -273,17 +273,17 @@ pub enum Certificate {
 /// normal cones of half-angle at most [`CERTIFY_CONE`]. Then each patch is a graph over the
 /// plane Π normal to w, the bisector of A's axis and the reverse of B's, with every normal of
 /// patch X tilted from w by at most τ_X = θ_X + ½ angle(axis_A, -axis_B) (below 90°: the cone
-/// test keeps the misalignment below θ_A + θ_B). The gap between the patches (B's height minus A's
-/// along w) has Hessian H_A + H_B, each a graph's height Hessian: its curvature tensor
-/// ([`crate::cones::patch_tree::CurvatureTensor`], library sign, convex positive, both facing each
-/// other) restricted to Π and distorted by the tilt: H = c⁻¹ G^½ S G^½ with G's eigenvalues in
-/// [1, c⁻²], c = cos τ_X, so ‖H - S‖ <= (c⁻³ - 1)‖S‖, each patch with its own tilt. Every sampled tensor of a node lies within
-/// its spread ε of the node's mean C̄ (Frobenius norm, which bounds the spectral norm of the
-/// restriction), so the smallest eigenvalue of the gap's Hessian is at least
-/// λ_min((C̄_A + C̄_B)|Π) - ε_A - ε_B - (c_A⁻³ - 1)‖C_A‖ - (c_B⁻³ - 1)‖C_B‖. (Taking the
-/// wider cone's tilt for both, as before, charged a pencil's narrow shaft for a bowl rim's wide
-/// cone.) When that exceeds
-/// [`CURVATURE_MARGIN`] of ‖C_A‖ + ‖C_B‖ (the margin covers curvature between the sampled
+/// test keeps the misalignment below θ_A + θ_B). The gap between the patches (B's height minus
+/// A's along w) has Hessian H_A + H_B, each a graph's height Hessian: its curvature tensor
+/// ([`crate::cones::patch_tree::CurvatureTensor`], library sign, convex positive, both facing
+/// each other) restricted to Π and distorted by the tilt: H = c⁻¹ G^½ S G^½ with G's
+/// eigenvalues in [1, c⁻²], c = cos τ_X, so ‖H - S‖ <= (c⁻³ - 1)‖S‖, each patch with its own
+/// tilt. Every sampled tensor of a node lies within its spread ε of the node's mean C̄
+/// (Frobenius norm, which bounds the spectral norm of the restriction), so the smallest
+/// eigenvalue of the gap's Hessian is at least
+/// λ_min((C̄_A + C̄_B)|Π) - ε_A - ε_B - (c_A⁻³ - 1)‖C_A‖ - (c_B⁻³ - 1)‖C_B‖ (the wider cone's
+/// tilt for both would charge a pencil's narrow shaft for a bowl rim's wide cone). When that
+/// exceeds [`CURVATURE_MARGIN`] of ‖C_A‖ + ‖C_B‖ (the margin covers curvature between the sampled
 /// corners, which lie at mesh resolution), the gap is strictly convex over the pair: one
 /// minimum at most, whatever its sign. Convex creases inside a patch only add convex kinks to
 /// the gap and are allowed. This certifies crossed cylinders (each flat along one direction) as
@@ -624,7 +624,7 @@ pub fn traverse(
         // its balls) costs less than a certified pair's model, and merges with its neighbours
         // by their balls rather than by a quarter of them (a pencil across a bowl's rim at
         // chordal tolerance 0.2 mm: eight certified leaf pairs made a third seed for two
-        // minima, and Stage 2 cost 1.44x).
+        // minima, and 1.44 times the Stage 2 instructions of the leaf path).
         let certified = if critical && !(a.is_leaf() && b.is_leaf()) {
             certificate(a, b, (axis_b, &frame.rotation), turn)
         } else {
