@@ -875,17 +875,69 @@ fn piece_of<'t>(
     Some((piece, corners))
 }
 
-/// The seed point of a point with barycentric coordinates `b` in `piece`.
+/// The seed point of a point with barycentric coordinates `b` in `piece`: on the convex edge
+/// ([`patch_tree::ridge_at`]) that it lies on, at the parameter interpolated from its
+/// triangle's corners there, and on the triangle's face otherwise.
+///
+/// Why on the edge: a mesh point on a ridge stands for the edge's own minimum (curve-surface),
+/// and its face parameters put the start a chord's sagitta inside the face, where Newton's
+/// first steps on the face pair cross the edge and are rejected. A tube lying across a loft's
+/// top cap, its minima on the cap's rim: the seed on the ridge took nine iterations from the
+/// cap, three of them rejected steps across the rim.
 fn piece_point(side: &Side<'_>, piece: &Piece, b: [f64; 3]) -> Option<SeedPoint> {
     let t = piece.triangle as usize;
     (t < side.mesh.triangle_params.len() && t < side.mesh.triangle_faces.len()).then(|| {
         let c = piece.corners;
+        let barycentric = piece.to_triangle(b);
+        let location = ridge_at(side, piece.triangle, barycentric)
+            .and_then(|edge| edge_location(side, t, barycentric, edge))
+            .unwrap_or_else(|| side.mesh.locate(t, barycentric));
         SeedPoint {
             component: side.component,
             local_point: c[0] * b[0] + c[1] * b[1] + c[2] * b[2],
-            location: side.mesh.locate(t, piece.to_triangle(b)),
+            location,
         }
     })
+}
+
+/// The location on `edge` of the point with `barycentric` coordinates in mesh triangle
+/// `triangle`, whose weighted corners all lie on that edge: their edge parameters averaged by
+/// weight (a periodic edge's unwrapped about the first one's, so that two corners across its
+/// seam average to a point between them). `None` where a corner is not on the edge or the
+/// parameter is not finite.
+fn edge_location(
+    side: &Side<'_>,
+    triangle: usize,
+    barycentric: [f64; 3],
+    edge: EdgeId,
+) -> Option<FeatureLocation> {
+    let corners = side.mesh.triangles.get(triangle)?;
+    let domain = side.object.solid.edges.get(edge.0 as usize)?.curve.domain();
+    let period = domain.max - domain.min;
+    let (mut sum, mut weights, mut reference) = (0.0, 0.0, None);
+    for (&vertex, &weight) in corners.iter().zip(&barycentric) {
+        if weight <= 1e-12 {
+            continue;
+        }
+        let FeatureLocation::Edge { id, t } = *side.mesh.vertex_locations.get(vertex as usize)?
+        else {
+            return None;
+        };
+        if id != edge {
+            return None;
+        }
+        let first = *reference.get_or_insert(t);
+        let t = if domain.periodic {
+            t - period * ((t - first) / period).round()
+        } else {
+            t
+        };
+        sum += weight * t;
+        weights += weight;
+    }
+    let t = domain.normalize(sum / weights);
+    t.is_finite()
+        .then_some(FeatureLocation::Edge { id: edge, t })
 }
 
 /// The closest points of a critical leaf pair as a seed candidate ranked by their distance.
