@@ -93,6 +93,8 @@ struct LeafPair {
     triangles: [u32; 2],
     /// The points' barycentric coordinates in those triangles.
     barycentric: [[f64; 3]; 2],
+    /// The convex edges the points lie on ([`ridges`]).
+    ridges: [Option<EdgeId>; 2],
 }
 
 /// Fraction of a certified pair's smaller ball radius within which two model seeds are the same
@@ -223,9 +225,12 @@ pub(crate) fn cone_path(
         if covered {
             continue;
         }
-        if let Some(f) = leaf_seed((side_a, tree_a, leaf.a), (side_b, tree_b, leaf.b), &frame)
-            .filter(|f| f.rank.1 <= mesh_reach)
-        {
+        if let Some(f) = leaf_seed(
+            (side_a, tree_a, leaf.a),
+            (side_b, tree_b, leaf.b),
+            &frame,
+            mesh_reach,
+        ) {
             found.push(f);
         }
     }
@@ -316,7 +321,7 @@ pub(crate) fn cone_path(
                 let Some(leaf) = f.leaf.filter(|_| !certainly_lower(g, f)) else {
                     continue;
                 };
-                let taken = [ridges(f, (side_a, side_b)), ridges(g, (side_a, side_b))];
+                let taken = [ridges(f), ridges(g)];
                 on_ridges.clear();
                 ridge_seeds(
                     (side_a, tree_a, leaf.nodes[0]),
@@ -422,9 +427,9 @@ fn judge(
     };
     // A candidate on a ridge that the mesh cannot tell from a neighbour off it (neither
     // certainly lower) may be a minimum of its own: the edge's, beside the face's.
-    let ridges_f = ridges(f, (side_a, side_b));
+    let ridges_f = ridges(f);
     let off_its_ridge = |g: &Found| {
-        let ridges_g = ridges(g, (side_a, side_b));
+        let ridges_g = ridges(g);
         let apart = (0..2).any(|s| ridges_f[s].is_some() && ridges_f[s] != ridges_g[s]);
         apart && !certainly_lower(g, f)
     };
@@ -447,7 +452,7 @@ fn judge(
         let (Some(_), Some(f_leaf)) = (g.leaf, f.leaf) else {
             return false;
         };
-        let ridges_g = ridges(g, (side_a, side_b));
+        let ridges_g = ridges(g);
         if (0..2).any(|s| ridges_f[s].is_some() && ridges_f[s] != ridges_g[s]) {
             return false;
         }
@@ -555,14 +560,8 @@ fn seed_distance(
 /// (0.075, not certainly lower), whose Newton run went to the apex, and the ridge's minimum
 /// was missed. On a ridge the distance has minima of its own (the edge's, point-curve and
 /// curve-surface in the paper's list), which a face's seed beside it does not reach.
-fn ridges(f: &Found, (side_a, side_b): (&Side<'_>, &Side<'_>)) -> [Option<EdgeId>; 2] {
-    let Some(leaf) = f.leaf else {
-        return [None, None];
-    };
-    [
-        ridge_at(side_a, leaf.triangles[0], leaf.barycentric[0]),
-        ridge_at(side_b, leaf.triangles[1], leaf.barycentric[1]),
-    ]
+fn ridges(f: &Found) -> [Option<EdgeId>; 2] {
+    f.leaf.map_or([None, None], |leaf| leaf.ridges)
 }
 
 /// [`patch_tree::ridge_at`] on `side`'s mesh and solid.
@@ -793,7 +792,7 @@ fn node_seed(
         }
         None => on_piece.barycentric,
     };
-    piece_point(side, piece, barycentric)
+    piece_point(side, piece, barycentric).map(|(point, _)| point)
 }
 
 /// The point of the pieces under `node` nearest to `point` (the tree's frame), with its
@@ -875,8 +874,8 @@ fn piece_of<'t>(
     Some((piece, corners))
 }
 
-/// The seed point of a point with barycentric coordinates `b` in `piece`: on the convex edge
-/// ([`patch_tree::ridge_at`]) that it lies on, at the parameter interpolated from its
+/// The seed point of a point with barycentric coordinates `b` in `piece`, with the convex edge
+/// it lies on ([`patch_tree::ridge_at`]): on that edge, at the parameter interpolated from its
 /// triangle's corners there, and on the triangle's face otherwise.
 ///
 /// Why on the edge: a mesh point on a ridge stands for the edge's own minimum (curve-surface),
@@ -884,19 +883,21 @@ fn piece_of<'t>(
 /// first steps on the face pair cross the edge and are rejected. A tube lying across a loft's
 /// top cap, its minima on the cap's rim: the seed on the ridge took nine iterations from the
 /// cap, three of them rejected steps across the rim.
-fn piece_point(side: &Side<'_>, piece: &Piece, b: [f64; 3]) -> Option<SeedPoint> {
+fn piece_point(side: &Side<'_>, piece: &Piece, b: [f64; 3]) -> Option<(SeedPoint, Option<EdgeId>)> {
     let t = piece.triangle as usize;
     (t < side.mesh.triangle_params.len() && t < side.mesh.triangle_faces.len()).then(|| {
         let c = piece.corners;
         let barycentric = piece.to_triangle(b);
-        let location = ridge_at(side, piece.triangle, barycentric)
+        let ridge = ridge_at(side, piece.triangle, barycentric);
+        let location = ridge
             .and_then(|edge| edge_location(side, t, barycentric, edge))
             .unwrap_or_else(|| side.mesh.locate(t, barycentric));
-        SeedPoint {
+        let point = SeedPoint {
             component: side.component,
             local_point: c[0] * b[0] + c[1] * b[1] + c[2] * b[2],
             location,
-        }
+        };
+        (point, ridge)
     })
 }
 
@@ -940,19 +941,22 @@ fn edge_location(
         .then_some(FeatureLocation::Edge { id: edge, t })
 }
 
-/// The closest points of a critical leaf pair as a seed candidate ranked by their distance.
+/// The closest points of a critical leaf pair as a seed candidate ranked by their distance,
+/// when that is at most `reach` (mm).
 fn leaf_seed(
     (side_a, tree_a, a): (&Side<'_>, &PatchTree, u32),
     (side_b, tree_b, b): (&Side<'_>, &PatchTree, u32),
     frame: &PairFrame,
+    reach: f64,
 ) -> Option<Found> {
     let (pa, ta) = piece_of(tree_a, a, None)?;
     let (pb, tb) = piece_of(tree_b, b, Some(frame))?;
     let pair = closest_between_triangles(&ta, &tb);
-    let seed = Seed {
-        a: piece_point(side_a, pa, pair.a.barycentric)?,
-        b: piece_point(side_b, pb, pair.b.barycentric)?,
-    };
+    if !(pair.distance <= reach) {
+        return None;
+    }
+    let (seed_a, ridge_a) = piece_point(side_a, pa, pair.a.barycentric)?;
+    let (seed_b, ridge_b) = piece_point(side_b, pb, pair.b.barycentric)?;
     let (node_a, node_b) = (&tree_a.nodes[a as usize], &tree_b.nodes[b as usize]);
     let radius = node_a.radius.max(node_b.radius);
     pair.distance.is_finite().then_some(Found {
@@ -970,8 +974,12 @@ fn leaf_seed(
                 pa.to_triangle(pair.a.barycentric),
                 pb.to_triangle(pair.b.barycentric),
             ],
+            ridges: [ridge_a, ridge_b],
         }),
-        source: Source::Made(seed),
+        source: Source::Made(Seed {
+            a: seed_a,
+            b: seed_b,
+        }),
     })
 }
 
@@ -1027,12 +1035,12 @@ fn ridge_seeds(
             ) else {
                 continue;
             };
+            debug_assert!(here.1 == Some(edge));
             let ((seed_a, seed_b), (point_a, point_b), (bary_a, bary_b)) = if k == 0 {
                 ((here, there), (near, far.point), (along, far.barycentric))
             } else {
                 ((there, here), (far.point, near), (far.barycentric, along))
             };
-            debug_assert!(ridge_at(side, piece.triangle, piece.to_triangle(along)) == Some(edge));
             if distance.is_finite() {
                 push(Found {
                     rank: (1, distance),
@@ -1045,10 +1053,11 @@ fn ridge_seeds(
                         nodes: [a, b],
                         triangles: [pa.triangle, pb.triangle],
                         barycentric: [pa.to_triangle(bary_a), pb.to_triangle(bary_b)],
+                        ridges: [seed_a.1, seed_b.1],
                     }),
                     source: Source::Made(Seed {
-                        a: seed_a,
-                        b: seed_b,
+                        a: seed_a.0,
+                        b: seed_b.0,
                     }),
                 });
             }
@@ -1078,7 +1087,7 @@ fn apex_seed(
         local_point: apex.point,
         location: apex.location,
     };
-    let piece_seed = piece_point(side, piece, on_piece.barycentric)?;
+    let (piece_seed, _) = piece_point(side, piece, on_piece.barycentric)?;
     let (seed, point_a, point_b) = if apex_is_a {
         (
             Seed {
