@@ -952,7 +952,7 @@ fn leaf_seed(
     let (pa, ta) = piece_of(tree_a, a, None)?;
     let (pb, tb) = piece_of(tree_b, b, Some(frame))?;
     let pair = closest_between_triangles(&ta, &tb);
-    if !(pair.distance <= reach) {
+    if pair.distance.is_nan() || pair.distance > reach {
         return None;
     }
     let (seed_a, ridge_a) = piece_point(side_a, pa, pair.a.barycentric)?;
