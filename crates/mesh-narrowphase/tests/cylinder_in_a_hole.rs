@@ -18,7 +18,7 @@
 mod common;
 
 use common::*;
-use geom_param::{DQuat, DVec3};
+use geom_param::{DQuat, DVec3, FeatureLocation};
 use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch};
 
 #[test]
@@ -61,4 +61,61 @@ fn a_pencil_leaning_in_a_tube_gets_a_seed_at_each_rim_contact() {
             "no seed near {m}: {on_tube:?}"
         );
     }
+}
+
+/// A seed whose mesh point lies on a rim's polyline (the triangle side along the convex edge
+/// between the hole's wall and an end face) is located on that edge, not on the wall at the
+/// chord's parameters: its exact edge point lies within the meshes' chordal error of the mesh
+/// point, on the rim circle (r = 5 at z = 0 or z = 60). Both minima are on the rims, and each
+/// rim gets such a seed.
+#[test]
+fn seeds_on_a_rim_polyline_are_located_on_the_rim() {
+    let tolerance = 0.05;
+    let tube = Prepared::new(fixture_object("tube", tolerance));
+    let pencil = Prepared::new(fixture_object("pencil", tolerance));
+    let pose_b = pose(
+        DQuat::from_array([0.0, 0.024325244977882785, 0.0, 0.9997040974492232]),
+        DVec3::new(-3.87032714844386, 0.0, -49.79149919838436),
+    );
+    let band = ContactBand {
+        margin: 1.0,
+        delta1: -0.001,
+        delta2: 0.1,
+    };
+    let mut scratch = MeshScratch::default();
+    let mut rims = [false, false];
+    for ca in &tube.object.components {
+        for cb in &pencil.object.components {
+            let (_, out) = query_path(
+                ConcavePath::NormalCones,
+                (&tube, ca.id),
+                (&pencil, cb.id),
+                &pose_b,
+                &band,
+                &mut scratch,
+            );
+            for seed in &out.seeds {
+                let location = seed.a.location;
+                if !matches!(location, FeatureLocation::Edge { .. }) {
+                    continue;
+                }
+                let exact = tube.object.solid.point_at(&location);
+                let error = tube.object.meshes[ca.id.0 as usize].chordal_error;
+                assert!(
+                    exact.distance(seed.a.local_point) <= error + 1e-9,
+                    "{location:?} at {exact}, mesh point {}",
+                    seed.a.local_point
+                );
+                let radius = exact.truncate().length();
+                assert!((radius - 5.0).abs() <= 1e-9, "{location:?} at {exact}");
+                if exact.z.abs() <= 1e-9 {
+                    rims[0] = true;
+                } else {
+                    assert!((exact.z - 60.0).abs() <= 1e-9, "{location:?} at {exact}");
+                    rims[1] = true;
+                }
+            }
+        }
+    }
+    assert_eq!(rims, [true, true], "a seed on each rim's edge");
 }
