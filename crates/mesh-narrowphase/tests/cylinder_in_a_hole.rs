@@ -18,14 +18,14 @@
 mod common;
 
 use common::*;
-use geom_param::{DQuat, DVec3, FeatureLocation};
+use geom_param::{ComponentId, DQuat, DVec3, FeatureLocation, Seed};
 use mesh_narrowphase::{ConcavePath, ContactBand, MeshScratch};
 
-#[test]
-fn a_pencil_leaning_in_a_tube_gets_a_seed_at_each_rim_contact() {
-    let tube = Prepared::new(fixture_object("tube", 0.05));
-    let pencil = Prepared::new(fixture_object("pencil", 0.05));
-    // The fixture's pose of the pencil (the tube at the identity).
+/// The tube and the normal-cone path's seeds for the fixture's pose of the pencil (the tube at
+/// the identity), over every pair of components, each with the tube's component it is on.
+fn fixture_seeds(tolerance: f64) -> (Prepared, Vec<(ComponentId, Seed)>) {
+    let tube = Prepared::new(fixture_object("tube", tolerance));
+    let pencil = Prepared::new(fixture_object("pencil", tolerance));
     let pose_b = pose(
         DQuat::from_array([0.0, 0.024325244977882785, 0.0, 0.9997040974492232]),
         DVec3::new(-3.87032714844386, 0.0, -49.79149919838436),
@@ -47,11 +47,17 @@ fn a_pencil_leaning_in_a_tube_gets_a_seed_at_each_rim_contact() {
                 &band,
                 &mut scratch,
             );
-            seeds.extend(out.seeds);
+            seeds.extend(out.seeds.into_iter().map(|seed| (ca.id, seed)));
         }
     }
+    (tube, seeds)
+}
+
+#[test]
+fn a_pencil_leaning_in_a_tube_gets_a_seed_at_each_rim_contact() {
+    let (_, seeds) = fixture_seeds(0.05);
     let minima = [DVec3::new(5.0, 0.0, 60.0), DVec3::new(-5.0, 0.0, 0.0)];
-    let on_tube: Vec<DVec3> = seeds.iter().map(|s| s.a.local_point).collect();
+    let on_tube: Vec<DVec3> = seeds.iter().map(|(_, s)| s.a.local_point).collect();
     println!("seeds on the tube: {on_tube:?}");
     assert!(seeds.len() <= 7, "{on_tube:?}");
     for m in minima {
@@ -71,50 +77,27 @@ fn a_pencil_leaning_in_a_tube_gets_a_seed_at_each_rim_contact() {
 #[test]
 fn seeds_on_a_rim_polyline_are_located_on_the_rim() {
     let tolerance = 0.05;
-    let tube = Prepared::new(fixture_object("tube", tolerance));
-    let pencil = Prepared::new(fixture_object("pencil", tolerance));
-    let pose_b = pose(
-        DQuat::from_array([0.0, 0.024325244977882785, 0.0, 0.9997040974492232]),
-        DVec3::new(-3.87032714844386, 0.0, -49.79149919838436),
-    );
-    let band = ContactBand {
-        margin: 1.0,
-        delta1: -0.001,
-        delta2: 0.1,
-    };
-    let mut scratch = MeshScratch::default();
+    let (tube, seeds) = fixture_seeds(tolerance);
     let mut rims = [false, false];
-    for ca in &tube.object.components {
-        for cb in &pencil.object.components {
-            let (_, out) = query_path(
-                ConcavePath::NormalCones,
-                (&tube, ca.id),
-                (&pencil, cb.id),
-                &pose_b,
-                &band,
-                &mut scratch,
-            );
-            for seed in &out.seeds {
-                let location = seed.a.location;
-                if !matches!(location, FeatureLocation::Edge { .. }) {
-                    continue;
-                }
-                let exact = tube.object.solid.point_at(&location);
-                let error = tube.object.meshes[ca.id.0 as usize].chordal_error;
-                assert!(
-                    exact.distance(seed.a.local_point) <= error + 1e-9,
-                    "{location:?} at {exact}, mesh point {}",
-                    seed.a.local_point
-                );
-                let radius = exact.truncate().length();
-                assert!((radius - 5.0).abs() <= 1e-9, "{location:?} at {exact}");
-                if exact.z.abs() <= 1e-9 {
-                    rims[0] = true;
-                } else {
-                    assert!((exact.z - 60.0).abs() <= 1e-9, "{location:?} at {exact}");
-                    rims[1] = true;
-                }
-            }
+    for (component, seed) in &seeds {
+        let location = seed.a.location;
+        if !matches!(location, FeatureLocation::Edge { .. }) {
+            continue;
+        }
+        let exact = tube.object.solid.point_at(&location);
+        let error = tube.object.meshes[component.0 as usize].chordal_error;
+        assert!(
+            exact.distance(seed.a.local_point) <= error + 1e-9,
+            "{location:?} at {exact}, mesh point {}",
+            seed.a.local_point
+        );
+        let radius = exact.truncate().length();
+        assert!((radius - 5.0).abs() <= 1e-9, "{location:?} at {exact}");
+        if exact.z.abs() <= 1e-9 {
+            rims[0] = true;
+        } else {
+            assert!((exact.z - 60.0).abs() <= 1e-9, "{location:?} at {exact}");
+            rims[1] = true;
         }
     }
     assert_eq!(rims, [true, true], "a seed on each rim's edge");
