@@ -276,12 +276,12 @@ pub enum Certificate {
 /// test keeps the misalignment below θ_A + θ_B). The gap between the patches (B's height minus
 /// A's along w) has Hessian H_A + H_B, each a graph's height Hessian: its curvature tensor
 /// ([`crate::cones::patch_tree::CurvatureTensor`], library sign, convex positive, both facing
-/// each other) restricted to Π and distorted by the tilt: H = c⁻¹ G^½ S G^½ with G's
-/// eigenvalues in [1, c⁻²], c = cos τ_X, so ‖H - S‖ <= (c⁻³ - 1)‖S‖, each patch with its own
-/// tilt. Every sampled tensor of a node lies within its spread ε of the node's mean C̄
-/// (Frobenius norm, which bounds the spectral norm of the restriction), so the smallest
-/// eigenvalue of the gap's Hessian is at least
-/// λ_min((C̄_A + C̄_B)|Π) - ε_A - ε_B - (c_A⁻³ - 1)‖C_A‖ - (c_B⁻³ - 1)‖C_B‖ (the wider cone's
+/// each other) as the node stores it (restricted to the plane normal to its axis), evaluated
+/// on Π (M = C|Π) and distorted by the tilt, ‖H - M‖ <= s_X ‖M‖ with s_X the [`stretch`]
+/// of patch X's own tilt and cone (about c⁻⁵ - 1 for c = cos τ_X). Every sampled tensor of a
+/// node lies within its spread ε of the node's mean C̄ (Frobenius norm, which bounds the
+/// spectral norm of the restriction), so the smallest eigenvalue of the gap's Hessian is at
+/// least λ_min((C̄_A + C̄_B)|Π) - ε_A - ε_B - s_A ‖C_A‖ - s_B ‖C_B‖ (the wider cone's
 /// tilt for both would charge a pencil's narrow shaft for a bowl rim's wide cone). When that
 /// exceeds [`CURVATURE_MARGIN`] of ‖C_A‖ + ‖C_B‖ (the margin covers curvature between the sampled
 /// corners, which lie at mesh resolution), the gap is strictly convex over the pair: one
@@ -332,23 +332,23 @@ pub fn certificate(
         ca.norm() + a.curvature_spread,
         cb.norm() + b.curvature_spread,
     );
-    let stretch = |c: f64| 1.0 / (c * c * c) - 1.0;
     let margin = CURVATURE_MARGIN * (na + nb);
     let bound = lambda_min - a.curvature_spread - b.curvature_spread;
-    let here = bound - stretch(tilt_a.0) * na - stretch(tilt_b.0) * nb;
+    let here =
+        bound - stretch(tilt_a, &a.cone, (ch, sh)) * na - stretch(tilt_b, &b.cone, (ch, sh)) * nb;
     if !(here > margin && here.is_finite()) {
         return None;
     }
     // The same after a turn by `turn`: cos(τ_X + ω/2) and cos((μ + ω)/2) by the angle sums.
     let (ct, st) = ((0.5 * turn).cos(), (0.5 * turn).sin());
-    let turned_cos = |(c, s): (f64, f64)| c * ct - s * st;
-    let (cos_a_turned, cos_b_turned) = (turned_cos(tilt_a), turned_cos(tilt_b));
-    let cos_half_mu_turned = ch * ct - sh * st;
-    let turned = if cos_a_turned > 0.0 && cos_b_turned > 0.0 && cos_half_mu_turned > 0.0 {
-        let beta = turn / (2.0 * cos_half_mu_turned);
+    let turned = |(c, s): (f64, f64)| (c * ct - s * st, s * ct + c * st);
+    let (tilt_a_turned, tilt_b_turned) = (turned(tilt_a), turned(tilt_b));
+    let half_mu_turned = turned((ch, sh));
+    let turned = if tilt_a_turned.0 > 0.0 && tilt_b_turned.0 > 0.0 && half_mu_turned.0 > 0.0 {
+        let beta = turn / (2.0 * half_mu_turned.0);
         bound
-            - stretch(cos_a_turned) * na
-            - stretch(cos_b_turned) * nb
+            - stretch(tilt_a_turned, &a.cone, half_mu_turned) * na
+            - stretch(tilt_b_turned, &b.cone, half_mu_turned) * nb
             - 2.0 * turn * nb
             - 2.0 * beta * (na + nb)
     } else {
@@ -359,6 +359,29 @@ pub fn certificate(
     } else {
         Certificate::AtRotation
     })
+}
+
+/// The relative bound s = c⁻¹ (1 + f)² − 1 on how far a patch's height Hessian H over the
+/// plane Π (normal w) lies from its stored tensor restricted to Π, M = C|Π, in norm:
+/// ‖H − M‖ <= s ‖M‖ at every point of the patch ([`certificate`]). `tilt` is (cos τ, sin τ) for
+/// τ the largest angle between w and the patch's normals, `cone` its normal cone (half-angle θ
+/// about its axis a) and `half_mu` (cos, sin) of the angle between w and a.
+///
+/// At a point with normal n (angle τ_p <= τ from w, c_p = cos τ_p) the height Hessian is
+/// H(ξ, ξ) = c_p⁻¹ C(Jξ, Jξ) for the lift Jξ = ξ − (n·ξ)/c_p w of ξ ∈ Π into the tangent
+/// plane, while the node stores C restricted to the plane normal to a, so that
+/// M(ξ, ξ) = C(Kξ, Kξ) with K = P_T P_a (projections onto the tangent plane and onto a's
+/// plane). Then H = c_p⁻¹ Rᵀ M R with R = K⁻¹ J, and
+/// Jξ − Kξ = (n·ξ)(n − w/c_p) + (a·ξ) P_T a, of length at most sin²τ / cos τ +
+/// sin(μ/2) sin θ for a unit ξ, while K shrinks no vector by more than cos(μ/2) cos θ (each
+/// projection by the cosine of the angle between its planes). So ‖R − I‖ <= f =
+/// (sin²τ / cos τ + sin(μ/2) sin θ) / (cos(μ/2) cos θ), ‖RᵀMR − M‖ <= ((1 + f)² − 1)‖M‖, and
+/// ‖H − M‖ <= (c_p⁻¹ (1 + f)² − 1)‖M‖. With the cone's axis along w (μ = 0) this is
+/// cos⁻⁵τ − 1, which a sphere's graph attains along its tilt (a curvature κ c² in M,
+/// κ c⁻³ in H).
+fn stretch((c, s): (f64, f64), cone: &NormalCone, (ch, sh): (f64, f64)) -> f64 {
+    let f = (s * s / c + sh * cone.sin) / (ch * cone.cos);
+    (1.0 + f) * (1.0 + f) / c - 1.0
 }
 
 /// The directions from a ball (centre `from`, radius `r_from`) to another at offset `d`
