@@ -341,9 +341,9 @@ pub fn certificate(
     }
     // The same after a turn by `turn`: cos(τ_X + ω/2) and cos((μ + ω)/2) by the angle sums.
     let (ct, st) = ((0.5 * turn).cos(), (0.5 * turn).sin());
-    let turned = |(c, s): (f64, f64)| (c * ct - s * st, s * ct + c * st);
-    let (tilt_a_turned, tilt_b_turned) = (turned(tilt_a), turned(tilt_b));
-    let half_mu_turned = turned((ch, sh));
+    let half_turned = |(c, s): (f64, f64)| (c * ct - s * st, s * ct + c * st);
+    let (tilt_a_turned, tilt_b_turned) = (half_turned(tilt_a), half_turned(tilt_b));
+    let half_mu_turned = half_turned((ch, sh));
     let turned = if tilt_a_turned.0 > 0.0 && tilt_b_turned.0 > 0.0 && half_mu_turned.0 > 0.0 {
         let beta = turn / (2.0 * half_mu_turned.0);
         bound
