@@ -111,14 +111,84 @@ fn settle_trimmed(
     trim: &geom_param::Trim,
     uv: [f64; 2],
 ) -> FeatureLocation {
+    match outside_trim(trim, uv) {
+        (_, Some(near)) => boundary_location(solid, trim, near),
+        // Keep the unwrapped parameters: the trim's loops live there, and evaluation wraps.
+        (p, None) => FeatureLocation::Face { id, u: p.x, v: p.y },
+    }
+}
+
+/// `uv` unwrapped ([`geom_param::Trim::unwrap`]), with its nearest boundary point when it lies
+/// outside the trimmed region (beyond rounding of the model tolerance); `None` inside it and
+/// for a trim without loops.
+fn outside_trim(trim: &geom_param::Trim, uv: [f64; 2]) -> (DVec2, Option<geom_param::TrimNearest>) {
     let p = trim.unwrap(DVec2::new(uv[0], uv[1]));
     let (lo, hi) = trim.bounds();
     let rounding = 16.0 * f64::EPSILON * (hi - lo).max_element().max(1.0);
     if trim.contains(p, rounding) {
-        // Keep the unwrapped parameters: the trim's loops live there, and evaluation wraps.
-        return FeatureLocation::Face { id, u: p.x, v: p.y };
+        return (p, None);
     }
-    onto_trim_boundary(solid, id, trim, p)
+    (p, trim.nearest(p))
+}
+
+/// [`settle`] for the end `to` of a step from `from`, with where the step left its face's
+/// trimmed region when it did (both on the same face): the fraction β in [0, 1) of the step at
+/// which it crosses the trim's boundary, taken as the line through the boundary point nearest
+/// to `to`, normal to the offset of `to` from it (exact for a straight trim, to second order in
+/// the step for a curved one), and the edge location of the boundary point nearest to the cut
+/// point `from + β (to − from)`. No crossing for a step that does not approach that line.
+///
+/// Why: a parameter rectangle's side cuts the step where it is reached
+/// ([`crate::solver::newton::take_step`]), so that both features move by the same fraction
+/// of their Newton step; a trim's boundary did not, and the point beyond it was put on its
+/// nearest boundary point while the other feature took its whole step. A tube's top face
+/// (trimmed by its rims) under a loft: the face-face step ran 0.8 mm past the rim, the loft's
+/// point went 0.8 mm the wrong way, and the solve spent four rejected or shrunken steps
+/// reaching the rim edge, where the minimum was.
+pub(crate) fn settle_step(
+    body: &Body,
+    from: &Loc,
+    to: Loc,
+) -> (Loc, Option<(f64, FeatureLocation)>) {
+    let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, to) else {
+        return (settle(body, to), None);
+    };
+    let Some(trim) = &solid.face(id).trim else {
+        return (settle(body, to), None);
+    };
+    let (end, near) = outside_trim(trim, [u, v]);
+    let Some(near) = near else {
+        let inside = FeatureLocation::Face {
+            id,
+            u: end.x,
+            v: end.y,
+        };
+        return (Some(inside), None);
+    };
+    let settled = boundary_location(solid, trim, near);
+    let Some(FeatureLocation::Face {
+        id: from_id,
+        u: u0,
+        v: v0,
+    }) = *from
+    else {
+        return (Some(settled), None);
+    };
+    if from_id != id {
+        return (Some(settled), None);
+    }
+    // The start shifted by the same whole periods as the end.
+    let start = DVec2::new(u0, v0) + (end - DVec2::new(u, v));
+    let outward = end - near.point;
+    let (approach, room) = (outward.dot(end - start), outward.dot(near.point - start));
+    if !(approach > 0.0 && room.is_finite()) {
+        return (Some(settled), None);
+    }
+    let beta = (room / approach).clamp(0.0, 1.0);
+    let on = onto_trim_boundary(solid, id, trim, start + beta * (end - start));
+    let crossing =
+        (beta < 1.0 && !matches!(on, FeatureLocation::Face { .. })).then_some((beta, on));
+    (Some(settled), crossing)
 }
 
 /// The nearest point of `trim`'s boundary to `p` (unwrapped, see [`geom_param::Trim::unwrap`])
@@ -133,6 +203,15 @@ fn onto_trim_boundary(
     let Some(near) = trim.nearest(p) else {
         return FeatureLocation::Face { id, u: p.x, v: p.y };
     };
+    boundary_location(solid, trim, near)
+}
+
+/// The edge location of the trim's boundary point `near` (or, at the edge's end, its vertex).
+fn boundary_location(
+    solid: &geom_param::Solid,
+    trim: &geom_param::Trim,
+    near: geom_param::TrimNearest,
+) -> FeatureLocation {
     let entry = &trim.loops[near.loop_index].entries[near.index];
     let edge_loc = Some(FeatureLocation::Edge {
         id: entry.edge,
@@ -605,6 +684,70 @@ pub(crate) fn on_closure(solid: &Solid, location: &FeatureLocation, face: FaceId
         FeatureLocation::Vertex { id } => {
             let vertex = solid.vertex(id);
             vertex.faces.contains(&face) || vertex.edges.iter().any(|&e| edge_on(e))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geom_param::DPose3;
+
+    fn cap(u: f64, v: f64) -> Loc {
+        Some(FeatureLocation::Face {
+            id: FaceId(3),
+            u,
+            v,
+        })
+    }
+
+    /// A step across a tube's top cap (a plane trimmed by circles of radius 10 and 8 mm) is cut
+    /// where it leaves the trim: a radial step from radius 9.9 to 10.9 mm at a tenth, onto the
+    /// outer rim (edge 1) at the point it crosses; a slanted one within second order of where
+    /// the segment meets the circle; a step that stays on the cap is not cut.
+    #[test]
+    fn a_step_across_a_trim_is_cut_where_it_crosses() {
+        let tube = geom_param::tube(10.0, 8.0, 20.0).expect("tube");
+        let body = Body::Solid {
+            solid: &tube,
+            frame: Frame::new(&DPose3::IDENTITY),
+            within: None,
+        };
+        for k in 0..12 {
+            let phi = 0.5 * f64::from(k);
+            let radial = DVec2::new(phi.cos(), phi.sin());
+            let (from, to) = (9.9 * radial, 10.9 * radial);
+            let (settled, crossing) = settle_step(&body, &cap(from.x, from.y), cap(to.x, to.y));
+            let (beta, on) = crossing.expect("the radial step crosses the rim");
+            assert!((beta - 0.1).abs() < 1e-12, "phi {phi}: beta {beta}");
+            assert!(
+                matches!(on, FeatureLocation::Edge { id, .. } if id == EdgeId(1)),
+                "phi {phi}: {on:?}"
+            );
+            let rim = DVec3::new(10.0 * radial.x, 10.0 * radial.y, 20.0);
+            assert!(tube.point_at(&on).distance(rim) < 1e-9, "phi {phi}");
+            assert!(matches!(settled, Some(FeatureLocation::Edge { .. })));
+
+            // Slanted by 45 degrees: the segment meets the circle at s solving
+            // |from + s (to - from)| = 10.
+            let tangent = radial.perp();
+            let to = from + 0.5 * (radial + tangent);
+            let d = to - from;
+            let (qa, qb, qc) = (d.dot(d), 2.0 * from.dot(d), from.dot(from) - 100.0);
+            let exact = (-qb + (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa);
+            let (_, crossing) = settle_step(&body, &cap(from.x, from.y), cap(to.x, to.y));
+            let (beta, _) = crossing.expect("the slanted step crosses the rim");
+            // The step is 0.71 mm on a circle of curvature 0.1 /mm.
+            assert!(
+                (beta - exact).abs() < 0.05,
+                "phi {phi}: {beta} against {exact}"
+            );
+
+            let inside = 9.0 * radial + 0.5 * tangent;
+            let (settled, crossing) =
+                settle_step(&body, &cap(from.x, from.y), cap(inside.x, inside.y));
+            assert_eq!(crossing, None, "phi {phi}");
+            assert!(matches!(settled, Some(FeatureLocation::Face { .. })));
         }
     }
 }

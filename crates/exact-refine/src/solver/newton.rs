@@ -23,7 +23,9 @@
 // Small dense matrices (at most 4 x 4): index arithmetic reads closer to the formulas.
 #![allow(clippy::needless_range_loop)]
 use crate::features::feature_eval::{Body, FeatureEval, Loc, LocalFacePoint, params, with_params};
-use crate::features::feature_switch::{TakenEntries, reenter, reenter_untaken, settle};
+use crate::features::feature_switch::{
+    TakenEntries, reenter, reenter_untaken, settle, settle_step,
+};
 use crate::linalg::dense_solve::{
     by_size, cholesky, cholesky_n, cholesky_solve, cholesky_solve_n, smallest_eigenvalue_bound,
 };
@@ -1140,7 +1142,9 @@ fn tangential_correction(cur: &State, step: &[f64; 4]) -> [f64; 4] {
 
 /// Applies the scaled step: periodic parameters move at most a quarter turn (the whole step is
 /// shortened to keep its direction), and the step is cut where a bounded parameter first reaches
-/// its side, which is then set exactly so that [`settle`] switches feature.
+/// its side, which is then set exactly so that [`settle`] switches feature, or where a face
+/// point first leaves its trimmed region, which then goes onto the trim's edge there
+/// ([`settle_step`]): both features move by the same fraction of the step.
 pub(crate) fn take_step(a: &Body, b: &Body, cur: &State, step: &[f64; 4]) -> (Loc, Loc) {
     let (xa, _) = params(&cur.la);
     let (xb, _) = params(&cur.lb);
@@ -1186,13 +1190,32 @@ pub(crate) fn take_step(a: &Body, b: &Body, cur: &State, step: &[f64; 4]) -> (Lo
             hit = Some((s, bound));
         }
     }
+    let start = x;
     for &s in &slot[..cur.n] {
         x[s] += alpha * delta[s];
     }
     if let Some((s, bound)) = hit {
         x[s] = bound;
     }
-    let la = settle(a, with_params(&cur.la, [x[0], x[1]]));
-    let lb = settle(b, with_params(&cur.lb, [x[2], x[3]]));
+    // A face point that leaves its trimmed region cuts the whole step there, as a side does,
+    // and goes onto the trim's edge ([`settle_step`]).
+    let (la, exit_a) = settle_step(a, &cur.la, with_params(&cur.la, [x[0], x[1]]));
+    let (lb, exit_b) = settle_step(b, &cur.lb, with_params(&cur.lb, [x[2], x[3]]));
+    let exit = match (exit_a, exit_b) {
+        (Some(ea), Some(eb)) if eb.0 < ea.0 => Some((1, eb)),
+        (Some(ea), _) => Some((0, ea)),
+        (None, Some(eb)) => Some((1, eb)),
+        (None, None) => None,
+    };
+    if let Some((side, (beta, on))) = exit {
+        for &s in &slot[..cur.n] {
+            x[s] = start[s] + beta * alpha * delta[s];
+        }
+        return if side == 0 {
+            (Some(on), settle(b, with_params(&cur.lb, [x[2], x[3]])))
+        } else {
+            (settle(a, with_params(&cur.la, [x[0], x[1]])), Some(on))
+        };
+    }
     (la, lb)
 }
