@@ -145,17 +145,31 @@ fn outside_trim(trim: &geom_param::Trim, uv: [f64; 2]) -> (DVec2, Option<geom_pa
 /// (trimmed by its rims) under a loft: the face-face step ran 0.8 mm past the rim, the loft's
 /// point went 0.8 mm the wrong way, and the solve spent four rejected or shrunken steps
 /// reaching the rim edge, where the minimum was.
+///
+/// Inlined, so that the steps on features other than trimmed faces (every step of a solid of
+/// revolution) pay only for the test that sends them to [`settle`].
+#[inline]
 pub(crate) fn settle_step(
     body: &Body,
     from: &Loc,
     to: Loc,
 ) -> (Loc, Option<(f64, FeatureLocation)>) {
-    let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, to) else {
-        return (settle(body, to), None);
-    };
-    let Some(trim) = &solid.face(id).trim else {
-        return (settle(body, to), None);
-    };
+    if let (Body::Solid { solid, .. }, Some(FeatureLocation::Face { id, u, v })) = (body, to)
+        && let Some(trim) = &solid.face(id).trim
+    {
+        settle_trimmed_step(solid, trim, from, (id, [u, v]))
+    } else {
+        (settle(body, to), None)
+    }
+}
+
+/// [`settle_step`] for the end `uv` of a step on trimmed face `id`.
+fn settle_trimmed_step(
+    solid: &Solid,
+    trim: &geom_param::Trim,
+    from: &Loc,
+    (id, [u, v]): (FaceId, [f64; 2]),
+) -> (Loc, Option<(f64, FeatureLocation)>) {
     let (end, near) = outside_trim(trim, [u, v]);
     let Some(near) = near else {
         let inside = FeatureLocation::Face {
