@@ -66,8 +66,14 @@ impl TriangleBuffers {
 }
 
 /// A floating-point filter in front of the exact triangle test: true only for two triangles the
-/// exact test would find disjoint ([`clearly_apart`], [`planes_apart`]).
+/// exact test would find disjoint ([`clearly_apart`], [`planes_apart`], [`none_apart`]).
 pub(crate) type ApartFilter = fn(&[DVec3; 3], &[DVec3; 3]) -> bool;
+
+/// The filter that drops no pair, for candidates already tested by separating axes (the
+/// normal-cone path's leaf pairs, [`crate::cones::cone_traversal::StopPair::meshes_may_meet`]).
+pub(crate) fn none_apart(_: &[DVec3; 3], _: &[DVec3; 3]) -> bool {
+    false
+}
 
 /// Runs the exact triangle test on every candidate pair (B's triangles moved into A's frame)
 /// that the filter `apart` leaves, and collects the intersection segments; a coplanar overlap
