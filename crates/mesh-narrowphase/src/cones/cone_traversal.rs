@@ -767,19 +767,24 @@ pub fn traverse_point(
         }
         let from_point = directions(d, length, n.radius);
         let all = NormalBand::ALL;
+        // The point has no band: where the node has none either, the bands add nothing (as
+        // for two such nodes in `traverse`).
+        let banded = !n.band.is_all();
         let kinds = if point_is_a {
-            CriticalKinds::of(cone, &n.cone, &from_point).with_bands(
-                (cone, &all),
-                (&n.cone, &n.band),
-                &from_point,
-            )
+            let kinds = CriticalKinds::of(cone, &n.cone, &from_point);
+            if banded {
+                kinds.with_bands((cone, &all), (&n.cone, &n.band), &from_point)
+            } else {
+                kinds
+            }
         } else {
             let towards_point = from_point.negated();
-            CriticalKinds::of(&n.cone, cone, &towards_point).with_bands(
-                (&n.cone, &n.band),
-                (cone, &all),
-                &towards_point,
-            )
+            let kinds = CriticalKinds::of(&n.cone, cone, &towards_point);
+            if banded {
+                kinds.with_bands((&n.cone, &n.band), (cone, &all), &towards_point)
+            } else {
+                kinds
+            }
         };
         if !kinds.any() {
             continue;
