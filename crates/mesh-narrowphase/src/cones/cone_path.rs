@@ -154,9 +154,10 @@ pub(crate) fn cone_path(
     scratch.candidates.sort_unstable();
     scratch.candidates.dedup();
     // The leaf pairs' triangles have passed the traversal's separating-axis test (their
-    // `meshes_may_meet`) and mostly meet: a floating-point filter in front of the exact test
-    // only repeats its first step (the planes' filter was 4% of a pencil through a bowl's
-    // wall, and spared no exact test there).
+    // `meshes_may_meet`; for a pair the front carries, at the pose it was tested at, less the
+    // motion since) and mostly meet: a floating-point filter in front of the exact test only
+    // repeats its first step (the planes' filter was 4% of a pencil through a bowl's wall, and
+    // spared no exact test there).
     let meshes_intersect = scratch.report_intersecting((side_a, side_b), pose_ab, none_apart, out);
 
     // 2. Seed candidates.

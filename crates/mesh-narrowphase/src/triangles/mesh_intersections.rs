@@ -69,8 +69,10 @@ impl TriangleBuffers {
 /// exact test would find disjoint ([`clearly_apart`], [`planes_apart`], [`none_apart`]).
 pub(crate) type ApartFilter = fn(&[DVec3; 3], &[DVec3; 3]) -> bool;
 
-/// The filter that drops no pair, for candidates already tested by separating axes (the
-/// normal-cone path's leaf pairs, [`crate::cones::cone_traversal::StopPair::meshes_may_meet`]).
+/// The filter that drops no pair, for candidates whose triangles have already been tested by
+/// separating axes (the normal-cone path's leaf pairs,
+/// [`crate::cones::cone_traversal::StopPair::meshes_may_meet`]): every pair goes to the exact
+/// test.
 pub(crate) fn none_apart(_: &[DVec3; 3], _: &[DVec3; 3]) -> bool {
     false
 }
