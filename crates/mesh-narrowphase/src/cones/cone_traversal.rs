@@ -574,6 +574,7 @@ pub fn traverse(
         let towards_b = directions(d, length, radii);
         let mut kinds = CriticalKinds::of(&a.cone, &cone_b, &towards_b);
         if kinds.any() && !(a.band.is_all() && b.band.is_all()) {
+            // (Checked here as well: rotating B's band is not free.)
             let band_b = b.band.rotated_by(&frame.rotation);
             kinds = kinds.with_bands((&a.cone, &a.band), (&cone_b, &band_b), &towards_b);
         }
@@ -767,24 +768,19 @@ pub fn traverse_point(
         }
         let from_point = directions(d, length, n.radius);
         let all = NormalBand::ALL;
-        // The point has no band: where the node has none either, the bands add nothing (as
-        // for two such nodes in `traverse`).
-        let banded = !n.band.is_all();
         let kinds = if point_is_a {
-            let kinds = CriticalKinds::of(cone, &n.cone, &from_point);
-            if banded {
-                kinds.with_bands((cone, &all), (&n.cone, &n.band), &from_point)
-            } else {
-                kinds
-            }
+            CriticalKinds::of(cone, &n.cone, &from_point).with_bands(
+                (cone, &all),
+                (&n.cone, &n.band),
+                &from_point,
+            )
         } else {
             let towards_point = from_point.negated();
-            let kinds = CriticalKinds::of(&n.cone, cone, &towards_point);
-            if banded {
-                kinds.with_bands((&n.cone, &n.band), (cone, &all), &towards_point)
-            } else {
-                kinds
-            }
+            CriticalKinds::of(&n.cone, cone, &towards_point).with_bands(
+                (&n.cone, &n.band),
+                (cone, &all),
+                &towards_point,
+            )
         };
         if !kinds.any() {
             continue;

@@ -498,17 +498,30 @@ impl NormalBand {
 impl CriticalKinds {
     /// [`CriticalKinds::of`] refined by the bands of the two patches' normals (`band_a`,
     /// `band_b`, same frame; a normal lies in both its cap and its band): each band must meet
-    /// the other patch's reversed cap and the directions.
+    /// the other patch's reversed cap and the directions. Two whole-sphere bands add nothing:
+    /// `self` as it is.
     #[must_use]
+    #[inline]
     pub fn with_bands(
         self,
         (a, band_a): (&NormalCone, &NormalBand),
         (b, band_b): (&NormalCone, &NormalBand),
         directions: &NormalCone,
     ) -> Self {
-        if !self.any() {
+        if !self.any() || (band_a.is_all() && band_b.is_all()) {
             return self;
         }
+        self.refined_by_bands((a, band_a), (b, band_b), directions)
+    }
+
+    /// [`CriticalKinds::with_bands`] past its early answers, in a function of its own so that
+    /// the early answers stay inline where a traversal asks for them at every node.
+    fn refined_by_bands(
+        self,
+        (a, band_a): (&NormalCone, &NormalBand),
+        (b, band_b): (&NormalCone, &NormalBand),
+        directions: &NormalCone,
+    ) -> Self {
         let minus_b = b.negated();
         let minus_band_b = band_b.negated();
         let shared = band_a.meets(&minus_b) && minus_band_b.meets(a);
