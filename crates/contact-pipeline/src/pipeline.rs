@@ -6,6 +6,7 @@ use crate::report::{Contact, PairReport, PairState};
 use bvh_hybrid::{BroadPhase, HybridBvh};
 use exact_refine::{
     BoundaryDistance, NearestBoundary, NewtonRefiner, RefinedContact, Refiner, WitnessCheck,
+    WitnessSide,
 };
 use geom_param::{
     ComponentId, DPose3, DVec3, FeatureLocation, LoadError, MeshOptions, ObjectDescription,
@@ -389,7 +390,8 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     /// Stage 3's
     /// witness check ([`Refiner::check_witness`] over Stage 2's meshes and the exact solids)
     /// finds the pair measured through the material (then it is dropped: no evidence of
-    /// anything); a witness point (merged with an earlier one within the merge tolerance), and,
+    /// anything, unless a point of it lies inside the other solid deeper than -delta1, which
+    /// then is the penetration's witness point and nothing more); a witness point (merged with an earlier one within the merge tolerance), and,
     /// when the check certifies the pair and it is the solver's deepest pair (second-order test
     /// passed), a contact with negative distance (merged likewise). An unconverged pair below
     /// delta1 proves nothing (one that stopped short on the way to an edge pair's witness may
@@ -415,12 +417,33 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
                 &MeshBoundary::<B, M>::new(&self.mesh, a),
                 &MeshBoundary::<B, M>::new(&self.mesh, b),
             );
-            if matches!(check, WitnessCheck::ThroughMaterial { .. }) {
+            // The pair's midpoint as the witness point; a pair measured through the material is
+            // dropped (no evidence of anything), unless one of its points lies inside the other
+            // solid deeper than -delta1: the solids overlap beyond the band there, though the
+            // pair does not measure the depth, and that point is the witness.
+            let witness = match check {
+                WitnessCheck::Certified | WitnessCheck::Undecided => {
+                    Some(0.5 * (refined.point_a + refined.point_b))
+                }
+                WitnessCheck::ThroughMaterial { .. } => None,
+                WitnessCheck::Overlapping { side, depth } => {
+                    (-depth < options.delta1).then_some(match side {
+                        WitnessSide::B => refined.point_a,
+                        WitnessSide::A => refined.point_b,
+                    })
+                }
+            };
+            if matches!(
+                check,
+                WitnessCheck::ThroughMaterial { .. } | WitnessCheck::Overlapping { .. }
+            ) {
                 report.stats.through_material += 1;
-                return false;
             }
+            let Some(witness) = witness else {
+                return false;
+            };
             report.state = PairState::Penetration;
-            let witness = *pose_a * (0.5 * (refined.point_a + refined.point_b));
+            let witness = *pose_a * witness;
             let tolerance = merge_tolerance(refined, scale);
             if report
                 .penetration_witnesses

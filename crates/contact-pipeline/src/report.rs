@@ -116,8 +116,10 @@ pub struct StageStats {
     pub mesh_overlaps: usize,
     /// Refined seeds that duplicated an earlier contact and were merged into it.
     pub merged: usize,
-    /// Refined seeds below delta1 dropped because Stage 3's witness check found them measured
-    /// through the material (`exact_refine::WitnessCheck::ThroughMaterial`).
+    /// Refined seeds below delta1 that Stage 3's witness check found measured through the
+    /// material (`exact_refine::WitnessCheck::ThroughMaterial`, dropped, and
+    /// `Overlapping`, kept as a penetration witness point only where the point inside lies
+    /// deeper than -delta1).
     pub through_material: usize,
 }
 
@@ -137,12 +139,14 @@ pub struct PairReport {
     /// Every contact (local minimum of distance inside the band), each once; when
     /// penetrating, also one entry per penetration region with `distance < delta1` (its exact
     /// depth, see [`Contact`]), merged like contacts. A region whose depth Stage 3 could not
-    /// certify (no seed, not converged, or the witness check undecided) has a witness point
+    /// certify (no seed, not converged, the witness check undecided, or a pair measured through
+    /// the material with a point inside the other solid deeper than -delta1) has a witness point
     /// in `penetration_witnesses` but no entry here; with [`crate::QueryDepth::StateOnly`]
     /// the query stops at the first one.
     pub contacts: Vec<Contact>,
     /// When penetrating: the centres of the intersecting mesh regions and the midpoints of the
-    /// refined penetration pairs (world frame), as witness points.
+    /// refined penetration pairs (world frame), as witness points; for a pair measured through
+    /// the material, its point inside the other solid.
     pub penetration_witnesses: Vec<DVec3>,
     /// What ran and how long it took.
     pub stats: StageStats,

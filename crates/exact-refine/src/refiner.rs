@@ -61,7 +61,9 @@ pub trait Refiner {
     /// implementation calls. A refiner sees two features
     /// only, so this needs a query over each whole boundary: the pipeline passes Stage 2's
     /// meshes ([`NearestBoundary`]). A pair that fails is measured through the material and is
-    /// no penetration witness ([`WitnessCheck::ThroughMaterial`]).
+    /// no penetration witness ([`WitnessCheck::ThroughMaterial`]); where one of its points lies
+    /// inside the other solid all the same, the solids overlap at least that point's depth
+    /// ([`WitnessCheck::Overlapping`]).
     ///
     /// # Panics
     /// Never: non-finite points give [`WitnessCheck::Undecided`].
