@@ -30,6 +30,9 @@ pub struct ConeScratch {
     /// The candidates' ranks ([`Found::rank`], its distance as [`ordered_bits`]) and indices
     /// into `found`, as sorting keys.
     ranked: Vec<u128>,
+    /// The leaf pairs' candidates' points so far, A's in A's frame and B's in B's, for the
+    /// covering test (a compact copy of theirs in `found`).
+    leaf_points: Vec<(DVec3, DVec3)>,
     /// Indices into `found`, closest first (a candidate is too large to sort by moving it).
     order: Vec<usize>,
     kept: Vec<usize>,
@@ -165,6 +168,7 @@ pub(crate) fn cone_path(
         traversal,
         found,
         nearest_first,
+        leaf_points,
         ranked,
         order,
         kept,
@@ -185,10 +189,11 @@ pub(crate) fn cone_path(
         }
     }
     let mesh_reach = delta2.max(0.0) + errors + allowance;
-    // A leaf pair whose two balls already hold a candidate's points would be merged with it
-    // below (its radius is at least its balls'), so it is skipped before its closest points are
-    // computed.
-    let first_leaf = found.len();
+    // A leaf pair whose two balls already hold a leaf pair's candidate's points would be merged
+    // with it below (its radius is at least its balls'), so it is skipped before its closest
+    // points are computed. The test runs on compact copies of those points (`leaf_points`, B's
+    // in B's frame so that the pair's B ball needs no move): over the candidates in `found` it
+    // was 6% of a pencil leaning in a tube (171 leaf pairs, 16 candidates).
     // Nearest pairs first: their candidates, made first, cover the pairs around them. Sorted as
     // 64-bit integer keys, the lower bound's order to 20 bits of mantissa (a relative 1e-6;
     // nearer ties only keep the traversal's order) above the pair's index: sorting the pairs
@@ -205,23 +210,25 @@ pub(crate) fn cone_path(
             }),
     );
     nearest_first.sort_unstable();
+    leaf_points.clear();
     for leaf in nearest_first
         .iter()
         .map(|&key| &traversal.leaves[key as u32 as usize])
     {
-        if let Some(pair) = triangle_pair(tree_a, tree_b, leaf.a, leaf.b) {
-            if leaf.meshes_may_meet && out.penetrating_pairs.contains(&pair) {
-                continue;
-            }
+        if leaf.meshes_may_meet
+            && triangle_pair(tree_a, tree_b, leaf.a, leaf.b)
+                .is_some_and(|pair| out.penetrating_pairs.contains(&pair))
+        {
+            continue;
         }
         let (na, nb) = (
             &tree_a.nodes[leaf.a as usize],
             &tree_b.nodes[leaf.b as usize],
         );
-        let cb = frame.rotation * nb.centre + frame.translation;
         let (ra, rb) = (na.radius * na.radius, nb.radius * nb.radius);
-        let covered = found[first_leaf..].iter().any(|f| {
-            f.point_a.distance_squared(na.centre) <= ra && f.point_b.distance_squared(cb) <= rb
+        // The latest candidates first: made nearest first, they lie nearest the pairs to come.
+        let covered = leaf_points.iter().rev().any(|(pa, pb)| {
+            pa.distance_squared(na.centre) <= ra && pb.distance_squared(nb.centre) <= rb
         });
         if covered {
             continue;
@@ -232,6 +239,7 @@ pub(crate) fn cone_path(
             &frame,
             mesh_reach,
         ) {
+            leaf_points.push((f.point_a, inverse * f.point_b));
             found.push(f);
         }
     }
