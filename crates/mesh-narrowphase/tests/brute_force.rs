@@ -484,11 +484,13 @@ fn segment_triangle_closest_points_match_a_convex_search() {
 /// general positions, nearly parallel triangles facing each other (close surfaces, where many
 /// cases tie), a corner over the other's interior, and slivers. The distance returned is that
 /// minimum, and its points lie on the triangles (by their barycentric coordinates) at that
-/// distance.
+/// distance. The triangles' boxes' gap ([`boxes_gap`]) never exceeds it.
+///
+/// [`boxes_gap`]: mesh_narrowphase::triangles::triangle_distance::boxes_gap
 #[test]
 fn triangle_closest_points_match_the_edge_triangle_minimum() {
     use mesh_narrowphase::triangles::triangle_distance::{
-        closest_between_segment_and_triangle, closest_between_triangles, separating_gap,
+        boxes_gap, closest_between_segment_and_triangle, closest_between_triangles, separating_gap,
     };
     let mut rng = Rng(4242);
     let point = |rng: &mut Rng, scale: f64| {
@@ -499,6 +501,9 @@ fn triangle_closest_points_match_the_edge_triangle_minimum() {
         )
     };
     let mut checked = 0;
+    // Pairs whose boxes' gap is at least half their distance (so that the bound is tested
+    // where it is near tight, not only where it is 0).
+    let mut tight_boxes = 0;
     for case in 0..3000 {
         // Flat triangles (z squeezed) one above the other for cases 1 and 2 of 3.
         let flat = if case % 3 == 0 { 1.0 } else { 1e-3 };
@@ -525,6 +530,13 @@ fn triangle_closest_points_match_the_edge_triangle_minimum() {
             "case {case}: {} vs {truth}",
             pair.distance
         );
+        // The boxes' gap is a lower bound on the distance.
+        let boxes = boxes_gap(&t1, &t2);
+        assert!(
+            boxes <= truth * (1.0 + 1e-12),
+            "case {case}: boxes {boxes} vs {truth}"
+        );
+        tight_boxes += usize::from(boxes >= 0.5 * truth);
         for (p, t) in [(&pair.a, &t1), (&pair.b, &t2)] {
             let b = p.barycentric;
             assert!(
@@ -541,4 +553,8 @@ fn triangle_closest_points_match_the_edge_triangle_minimum() {
         );
     }
     assert!(checked > 2000, "{checked} disjoint pairs");
+    assert!(
+        tight_boxes > 500,
+        "{tight_boxes} pairs with near-tight boxes"
+    );
 }

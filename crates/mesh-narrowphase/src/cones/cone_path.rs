@@ -12,7 +12,7 @@ use crate::pair_key::PairKey;
 use crate::query_side::Side;
 use crate::triangles::mesh_intersections::{TriangleBuffers, none_apart};
 use crate::triangles::triangle_distance::{
-    TrianglePoint, closest_between_segment_and_triangle, closest_between_triangles,
+    TrianglePoint, boxes_gap, closest_between_segment_and_triangle, closest_between_triangles,
     closest_on_triangle, normals_gap,
 };
 use geom_param::{DPose3, EdgeId, FeatureLocation, Seed, SeedPoint};
@@ -960,6 +960,11 @@ fn leaf_seed(
 ) -> Option<Found> {
     let (pa, ta) = piece_of(tree_a, a, None)?;
     let (pb, tb) = piece_of(tree_b, b, Some(frame))?;
+    // Pieces side by side (their ball spans a triangle, far wider than the gaps of a conformal
+    // contact) are told apart by their boxes before their closest points are computed.
+    if boxes_gap(&ta, &tb) > reach {
+        return None;
+    }
     let pair = closest_between_triangles(&ta, &tb);
     if pair.distance.is_nan() || pair.distance > reach {
         return None;

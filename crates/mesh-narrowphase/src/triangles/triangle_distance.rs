@@ -315,6 +315,23 @@ pub fn closest_between_segment_and_triangle(
     (best.1, best.2, best.0.sqrt())
 }
 
+/// A lower bound (mm) on the distance between two triangles: the distance between their
+/// axis-aligned bounding boxes (per axis, the gap between the two coordinate ranges, 0 where
+/// they overlap), since every point of a triangle lies in its box. A few dozen instructions, a
+/// fiftieth of [`closest_between_triangles`], and as tight as the triangles' closest points
+/// where they lie side by side along an axis: of a pencil's leaf pairs beside a tube's rim whose
+/// closest points lay beyond the reach, it told most apart (pencil-tube-two's Stage 2, 6% of
+/// its query).
+#[must_use]
+pub fn boxes_gap(t1: &[DVec3; 3], t2: &[DVec3; 3]) -> f64 {
+    let low = |t: &[DVec3; 3]| t[0].min(t[1]).min(t[2]);
+    let high = |t: &[DVec3; 3]| t[0].max(t[1]).max(t[2]);
+    (low(t1) - high(t2))
+        .max(low(t2) - high(t1))
+        .max(DVec3::ZERO)
+        .length()
+}
+
 /// A lower bound (mm) on the distance between two triangles by the separating axes of their
 /// two normals only: the larger gap between their projections onto either normal (0 when
 /// neither separates them). A fraction of [`separating_gap`]'s cost, and as tight for nearly
