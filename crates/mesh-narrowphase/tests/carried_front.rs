@@ -114,8 +114,9 @@ fn walk(a: &Prepared, b: &Prepared, start: DPose3, steps: &[(f64, f64)], near: f
     assert!(compared > 0, "the walk found nothing to compare");
 }
 
-/// Steps (mm, rad) below the carried margins (a hundredth of a leaf's ball, about 0.005 mm),
-/// about them, and far above.
+/// Steps (mm, rad) below the carried margins (a hundredth of a leaf's ball, about 0.005 mm,
+/// and a sixteenth of that for a nearly critical cone drop, `NEAR_CRITICAL_CARRY`), about
+/// them, and far above.
 const STEPS: [(f64, f64); 5] = [
     (1e-4, 1e-7),
     (1e-3, 1e-6),
