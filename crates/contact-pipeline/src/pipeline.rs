@@ -387,13 +387,13 @@ impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
 
 impl<B: BroadPhase, M: MeshPhase, R: Refiner> ContactPipeline<B, M, R> {
     /// Enters one refined seed into `report`: below delta1 and converged a penetration, unless
-    /// Stage 3's
-    /// witness check ([`Refiner::check_witness`] over Stage 2's meshes and the exact solids)
-    /// finds the pair measured through the material (then it is dropped: no evidence of
+    /// Stage 3's witness check ([`Refiner::check_witness`] over Stage 2's meshes and the exact
+    /// solids) finds the pair measured through the material (then it is dropped: no evidence of
     /// anything, unless a point of it lies inside the other solid deeper than -delta1, which
-    /// then is the penetration's witness point and nothing more); a witness point (merged with an earlier one within the merge tolerance), and,
-    /// when the check certifies the pair and it is the solver's deepest pair (second-order test
-    /// passed), a contact with negative distance (merged likewise). An unconverged pair below
+    /// then is the penetration's witness point and nothing more); a witness point (merged with
+    /// an earlier one within the merge tolerance), and, when the check certifies the pair and it
+    /// is the solver's deepest pair (second-order test passed), a contact with negative
+    /// distance (merged likewise). An unconverged pair below
     /// delta1 proves nothing (one that stopped short on the way to an edge pair's witness may
     /// be below delta1 where the converged answer is a contact in the band) and is dropped
     /// here; the query falls back on it only when nothing converged. In the band and a local
