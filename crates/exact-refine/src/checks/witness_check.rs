@@ -226,17 +226,24 @@ pub fn check_witness(
     let mut holds = [false; 2];
     // Per side: the distance of a boundary point of the other solid to this side's point (the
     // nearer one found, or, between two sharp points, the other point where none but its flanks
-    // is nearer; elsewhere the other point is then the nearest, and `holds` decides).
+    // is nearer; elsewhere the other point is then the nearest, and `holds` decides), with the
+    // representation's error bound.
     let mut nearer_at = [None; 2];
     for (k, &(near, point, own_point, own, side)) in sides.iter().enumerate() {
-        match nearer_than(near, point, limit, sharp.then_some(own)) {
+        // Only a boundary point nearer than `limit` matters (one farther, by the error bound,
+        // answers `No` as none within reach does).
+        let found = near.nearest_boundary(point, limit);
+        let error = found.map_or(f64::INFINITY, |f| f.error_bound.max(0.0));
+        match found.map_or(Nearer::Unknown, |f| {
+            nearer_than(near, &f, point, limit, sharp.then_some(own))
+        }) {
             Nearer::At(at) => {
                 nearer.get_or_insert((side, at));
-                nearer_at[k] = Some(at);
+                nearer_at[k] = Some((at, error));
             }
             Nearer::Unknown => undecided = true,
             Nearer::No => {
-                nearer_at[k] = sharp.then_some(depth);
+                nearer_at[k] = sharp.then_some((depth, error));
                 match near.outward(own_point, own) {
                     Some(n) => holds[k] = (point - own_point).dot(n) < 0.0,
                     None => undecided = true,
@@ -268,42 +275,64 @@ pub fn check_witness(
 
 /// The exact distance (mm) from `local` (in `near`'s frame) to `near`'s boundary when `local`
 /// lies inside the solid; `None` when it lies outside, or where that is not decided. `at` (mm)
-/// is the distance of some point of the boundary, a representation's or the exact one's, so
-/// the exact nearest point is within `at` + e (e: the representation's error bound), and its
+/// is the distance of some point of the boundary, a representation's or the exact one's, and
+/// `e` the representation's error bound, so the exact nearest point is within `at` + e and its
 /// face is listed within `at` + 2e ([`NearestBoundary::faces_near`]). Each listed face is
 /// projected onto (the flanks included: inside means inside the whole solid), and `local` is
 /// inside when it lies behind the outward direction at the nearest of those points (the face
 /// normal there; around an edge or corner, the mean, as [`NearestBoundary::outward`]). Any
 /// projection that does not converge leaves it undecided.
-fn depth_inside(near: &dyn NearestBoundary, local: DVec3, at: f64) -> Option<f64> {
-    let found = near.nearest_boundary(local, at)?;
-    let e = found.error_bound.max(0.0);
-    let solid = near.solid()?;
+fn depth_inside(near: &dyn NearestBoundary, local: DVec3, (at, e): (f64, f64)) -> Option<f64> {
     if !(e.is_finite() && at.is_finite()) {
         return None;
     }
+    let solid = near.solid()?;
+    let (depth, point, location) = nearest_on_faces(near, solid, local, at + 2.0 * e, None)?;
+    let outward = near.outward(point, location?)?;
+    ((local - point).dot(outward) < 0.0).then_some(depth)
+}
+
+/// The nearest exact boundary point to `local` (in `near`'s frame) over the faces of `solid`
+/// that `near` lists within `radius` (mm, [`NearestBoundary::faces_near`]), each by Stage 3's
+/// projection from the listed parameters, leaving out the faces that hold `flanked` and any
+/// projection that slid onto a face beside it ([`Solid::beside`]): its distance (mm), point and
+/// location (`None` for no face), or ∞ when none counts. `None` when a projection does not
+/// converge.
+fn nearest_on_faces(
+    near: &dyn NearestBoundary,
+    solid: &Solid,
+    local: DVec3,
+    radius: f64,
+    flanked: Option<FeatureLocation>,
+) -> Option<(f64, DVec3, Option<FeatureLocation>)> {
     let body = Body::Solid {
         solid,
         frame: Frame::identity(),
         within: None,
     };
     let options = NewtonOptions::default();
-    let mut nearest: Option<(f64, DVec3, FeatureLocation)> = None;
-    for start in near.faces_near(local, at + 2.0 * e) {
+    let mut nearest = (f64::INFINITY, local, None);
+    for start in near.faces_near(local, radius) {
+        let FeatureLocation::Face { id, .. } = start else {
+            continue;
+        };
+        if flanked.is_some_and(|own| solid.face_holds(id, &own)) {
+            continue;
+        }
         let solution =
             minimize_projection(&body, local, Some(start), 0.0, &options, Reentry::Allowed);
-        let state = &solution.state;
-        let (Outcome::Converged, Some(location)) = (solution.outcome, state.la) else {
+        if solution.outcome != Outcome::Converged {
             return None;
-        };
+        }
+        // A projection that slid onto a flank left out does not count.
+        let state = &solution.state;
+        let slid = |own: FeatureLocation| state.la.is_some_and(|l| solid.beside(&l, &own));
         let distance = state.d.length();
-        if nearest.is_none_or(|(d, ..)| distance < d) {
-            nearest = Some((distance, state.ea.point, location));
+        if !flanked.is_some_and(slid) && distance < nearest.0 {
+            nearest = (distance, state.ea.point, state.la);
         }
     }
-    let (depth, point, location) = nearest?;
-    let outward = near.outward(point, location)?;
-    ((local - point).dot(outward) < 0.0).then_some(depth)
+    Some(nearest)
 }
 
 /// Whether a boundary comes nearer than some distance to a point.
@@ -325,18 +354,15 @@ enum Nearer {
 /// `limit` + e), by Stage 3's projection from the listed parameters (a local Newton
 /// minimisation on the face, its edges and vertices, back into the face where the distance
 /// falls into it: the face's nearest point when the listed start is near it), not counting a
-/// projection that slid onto a face left out ([`Solid::beside`]).
+/// projection that slid onto a face left out ([`Solid::beside`]). `found` is the
+/// representation's nearest point to `local`, asked for within `limit`.
 fn nearer_than(
     near: &dyn NearestBoundary,
+    found: &BoundaryDistance,
     local: DVec3,
     limit: f64,
     flanked: Option<FeatureLocation>,
 ) -> Nearer {
-    // Only a boundary point nearer than `limit` matters (one farther, by the error bound,
-    // answers `No` as none within reach does).
-    let Some(found) = near.nearest_boundary(local, limit) else {
-        return Nearer::Unknown;
-    };
     let e = found.error_bound.max(0.0);
     if found.distance.is_nan() || found.distance < 0.0 || !e.is_finite() {
         return Nearer::Unknown;
@@ -350,35 +376,10 @@ fn nearer_than(
     let Some(solid) = near.solid() else {
         return Nearer::Unknown;
     };
-    let body = Body::Solid {
-        solid,
-        frame: Frame::identity(),
-        within: None,
-    };
-    let options = NewtonOptions::default();
-    let mut best = f64::INFINITY;
-    for start in near.faces_near(local, limit + e) {
-        let FeatureLocation::Face { id, .. } = start else {
-            continue;
-        };
-        if flanked.is_some_and(|own| solid.face_holds(id, &own)) {
-            continue;
-        }
-        let solution =
-            minimize_projection(&body, local, Some(start), 0.0, &options, Reentry::Allowed);
-        if solution.outcome != Outcome::Converged {
-            return Nearer::Unknown;
-        }
-        // A projection that slid onto a flank left out does not count.
-        let slid = |own: FeatureLocation| solution.state.la.is_some_and(|l| solid.beside(&l, &own));
-        if !flanked.is_some_and(slid) {
-            best = best.min(solution.state.d.length());
-        }
-    }
-    if best < limit {
-        Nearer::At(best)
-    } else {
-        Nearer::No
+    match nearest_on_faces(near, solid, local, limit + e, flanked) {
+        None => Nearer::Unknown,
+        Some((best, ..)) if best < limit => Nearer::At(best),
+        Some(_) => Nearer::No,
     }
 }
 
