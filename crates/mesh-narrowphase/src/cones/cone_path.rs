@@ -179,12 +179,23 @@ pub(crate) fn cone_path(
         ..
     } = path;
     found.clear();
+    leaf_points.clear();
     for stop in &traversal.certified {
         let (na, nb) = (
             &tree_a.nodes[stop.a as usize],
             &tree_b.nodes[stop.b as usize],
         );
+        let (ra, rb) = (na.radius * na.radius, nb.radius * nb.radius);
+        let covered = leaf_points.iter().rev().any(|(pa, pb)| {
+            pa.distance_squared(na.centre) <= ra && pb.distance_squared(nb.centre) <= rb
+        });
+        if covered {
+            continue;
+        }
         if let Some(f) = predict((na, nb), [stop.a, stop.b], &frame) {
+            if f.outside.is_none() {
+                leaf_points.push((f.point_a, inverse * f.point_b));
+            }
             found.push(f);
         }
     }
@@ -210,7 +221,6 @@ pub(crate) fn cone_path(
             }),
     );
     nearest_first.sort_unstable();
-    leaf_points.clear();
     for leaf in nearest_first
         .iter()
         .map(|&key| &traversal.leaves[key as u32 as usize])
