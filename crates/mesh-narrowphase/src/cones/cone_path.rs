@@ -3,7 +3,7 @@
 //! minimum: certified pairs seeded from second-order models of the exact faces, the leaf pairs
 //! left from their closest points, and exact triangle tests where the meshes may intersect.
 
-use crate::cones::cone_front::ConeFront;
+use crate::cones::cone_front::{ApexFront, ConeFront};
 use crate::cones::cone_traversal::{PairFrame, TraversalOutput, traverse, traverse_point};
 use crate::cones::normal_cone::{CriticalKinds, NormalCone};
 use crate::cones::patch_tree::{self, PIECE_SIDES, PatchLeaf, PatchNode, PatchTree, Piece};
@@ -131,15 +131,35 @@ pub(crate) fn cone_path(
     traverse(tree_a, tree_b, &frame, (reach, moved), traversal);
     front.finish(traversal);
     let inverse = pose_ab.inverse();
-    for (k, apex) in tree_a.apexes.iter().enumerate() {
+    // Each apex against the other tree, from its own front.
+    let [fronts_a, fronts_b] = &mut front.apexes;
+    fronts_a.resize_with(tree_a.apexes.len(), ApexFront::default);
+    fronts_b.resize_with(tree_b.apexes.len(), ApexFront::default);
+    for ((k, apex), apex_front) in tree_a.apexes.iter().enumerate().zip(fronts_a) {
         let cone = apex.cone.rotated(inverse.rotation);
         let point = inverse * apex.point;
-        traverse_point(tree_b, (k as u32, point, &cone), true, reach, traversal);
+        let moved = apex_front.start(tree_b, (k as u32, point, true), reach, traversal);
+        traverse_point(
+            tree_b,
+            (k as u32, point, &cone),
+            true,
+            (reach, moved),
+            traversal,
+        );
+        apex_front.finish(traversal);
     }
-    for (k, apex) in tree_b.apexes.iter().enumerate() {
+    for ((k, apex), apex_front) in tree_b.apexes.iter().enumerate().zip(fronts_b) {
         let cone = apex.cone.rotated(pose_ab.rotation);
         let point = *pose_ab * apex.point;
-        traverse_point(tree_a, (k as u32, point, &cone), false, reach, traversal);
+        let moved = apex_front.start(tree_a, (k as u32, point, false), reach, traversal);
+        traverse_point(
+            tree_a,
+            (k as u32, point, &cone),
+            false,
+            (reach, moved),
+            traversal,
+        );
+        apex_front.finish(traversal);
     }
     out.stats.node_pairs_visited = traversal.visited;
     out.stats.certified_pairs = u32::try_from(traversal.certified.len()).unwrap_or(u32::MAX);

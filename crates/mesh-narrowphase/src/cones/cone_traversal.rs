@@ -62,6 +62,22 @@ pub struct FrontEntry {
     pub kept: Option<KeptLeaf>,
 }
 
+/// A node where an apex's traversal ([`traverse_point`]) stopped, kept for the next query of the
+/// same pair ([`crate::cones::cone_front::ApexFront`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ApexEntry {
+    /// The node of the other component's tree.
+    pub node: u32,
+    /// For a node dropped by distance (its ball or its slab beyond the reach): by how much (mm),
+    /// less the apex's motion since the front's reference point; for a kept leaf, the motion it
+    /// is kept for ([`LEAF_CARRY`] of its ball radius) less that motion; negative for a node
+    /// tested again next query (one dropped by its cones, a leaf kept for less than the motion
+    /// so far).
+    pub slack: f64,
+    /// A leaf kept as one the apex reaches, untested, while its slack lasts.
+    pub leaf: bool,
+}
+
 /// A leaf pair carried by the front ([`FrontEntry::kept`]) as a leaf pair, without being
 /// tested again, while its slack lasts: only its distance bound and whether its meshes may
 /// meet follow the motion, conservatively.
@@ -141,6 +157,8 @@ pub struct TraversalOutput {
     pub visited: u32,
     /// Every node pair where the pair traversal stopped (see [`FrontEntry`]).
     pub front: Vec<FrontEntry>,
+    /// Every node where the last apex's traversal stopped (see [`ApexEntry`]).
+    pub apex_front: Vec<ApexEntry>,
     stack: Vec<(u32, u32)>,
 }
 
@@ -153,12 +171,22 @@ impl TraversalOutput {
         self.apex_b_leaves.clear();
         self.visited = 0;
         self.front.clear();
+        self.apex_front.clear();
         self.stack.clear();
     }
 
-    /// Queues a node pair for [`traverse`].
+    /// Queues a node pair for [`traverse`] (a node, paired with 0, for [`traverse_point`]).
     pub fn queue(&mut self, a: u32, b: u32) {
         self.stack.push((a, b));
+    }
+
+    /// Records leaf `node` as reached by apex `apex` (of A when `point_is_a`, the leaf B's).
+    pub fn reach_apex_leaf(&mut self, apex: u32, node: u32, point_is_a: bool) {
+        if point_is_a {
+            self.apex_a_leaves.push((apex, node));
+        } else {
+            self.apex_b_leaves.push((apex, node));
+        }
     }
 }
 
@@ -746,34 +774,45 @@ pub fn traverse(
 }
 
 /// Traverses `tree` (in its own frame) against a point `point` with normal cone `cone` (both in
-/// the tree's frame), the apex `apex` of the other component, and appends to
-/// `out.apex_a_leaves` (when `point_is_a`: the point is A's, the tree B's) or to
-/// `out.apex_b_leaves` every leaf within `reach` (mm) whose cone allows a critical pair with the
-/// point (the cone test is not symmetric).
+/// the tree's frame), the apex `apex` of the other component, and records as reached
+/// ([`TraversalOutput::reach_apex_leaf`]: the point is A's, the tree B's, when `point_is_a`)
+/// every leaf within `reach` (mm) whose cone allows a critical pair with the point (the cone
+/// test is not symmetric).
+///
+/// Starts from the nodes [`TraversalOutput::queue`]d (the root, for a fresh traversal; see
+/// [`crate::cones::cone_front::ApexFront`]). Every node where it stops goes to
+/// `out.apex_front`, a node dropped by distance with its margin less `moved` (mm), the apex's
+/// motion since the front's reference point.
 pub fn traverse_point(
     tree: &PatchTree,
     (apex, point, cone): (u32, DVec3, &NormalCone),
     point_is_a: bool,
-    reach: f64,
+    (reach, moved): (f64, f64),
     out: &mut TraversalOutput,
 ) {
-    if tree.nodes.is_empty() {
-        return;
-    }
-    out.stack.clear();
-    out.stack.push((0, 0));
+    let stopped = |node: u32, slack: f64| ApexEntry {
+        node,
+        slack,
+        leaf: false,
+    };
     while let Some((i, _)) = out.stack.pop() {
+        let Some(n) = tree.nodes.get(i as usize) else {
+            continue;
+        };
         out.visited = out.visited.saturating_add(1);
-        let n = &tree.nodes[i as usize];
         let d = n.centre - point;
         let apart = reach + n.radius;
         let length_squared = d.length_squared();
         if length_squared > apart * apart {
+            out.apex_front
+                .push(stopped(i, length_squared.sqrt() - apart - moved));
             continue;
         }
         let length = length_squared.sqrt();
         let t = n.cone.axis.dot(-d);
-        if (n.slab[0] - t).max(t - n.slab[1]) > reach {
+        let beyond = (n.slab[0] - t).max(t - n.slab[1]);
+        if beyond > reach {
+            out.apex_front.push(stopped(i, beyond - reach - moved));
             continue;
         }
         let from_point = directions(d, length, n.radius);
@@ -793,14 +832,15 @@ pub fn traverse_point(
             )
         };
         if !kinds.any() {
+            out.apex_front.push(stopped(i, -1.0));
             continue;
         }
         if n.is_leaf() {
-            if point_is_a {
-                out.apex_a_leaves.push((apex, i));
-            } else {
-                out.apex_b_leaves.push((apex, i));
-            }
+            out.reach_apex_leaf(apex, i, point_is_a);
+            out.apex_front.push(ApexEntry {
+                leaf: true,
+                ..stopped(i, LEAF_CARRY * n.radius - moved)
+            });
         } else {
             out.stack.push((i + 1, 0));
             out.stack.push((n.right, 0));
