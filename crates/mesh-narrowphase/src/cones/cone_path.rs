@@ -232,9 +232,10 @@ pub(crate) fn cone_path(
     // its closest points are computed: a leaf pair's candidate there would be merged with its
     // own below (its radius is at least its balls'); a certified pair's unclamped prediction
     // there is a minimum found to third order, which its closest points would only find again
-    // (the bolder rule, as for certified pairs above). The test runs on compact copies of those points (`covering_points`, B's
-    // in B's frame so that the pair's B ball needs no move): over the candidates in `found` it
-    // was 6% of a pencil leaning in a tube (171 leaf pairs, 16 candidates).
+    // (the bolder rule, as for certified pairs above). The test runs on compact copies of
+    // those points (`covering_points`, B's in B's frame so that the pair's B ball needs no
+    // move): over the candidates in `found` it was 6% of a pencil leaning in a tube (171 leaf
+    // pairs, 16 candidates).
     // Nearest pairs first: their candidates, made first, cover the pairs around them. Sorted as
     // 64-bit integer keys, the lower bound's order to 20 bits of mantissa (a relative 1e-6;
     // nearer ties only keep the traversal's order) above the pair's index: sorting the pairs
