@@ -163,14 +163,20 @@ fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_through_a_bowl() {
     walk(&bowl, &pencil, start, &STEPS, 2.5);
 }
 
+/// The pencil's pose in the bowl of the two-contact fixture scene: its tip on the floor, its
+/// side on the rim.
+fn pencil_resting_in_a_bowl() -> DPose3 {
+    pose(
+        DQuat::from_array([0.0, 0.8977059759571835, 0.0, 0.44059503030647196]),
+        DVec3::new(-130.3998473869082, 0.0, 114.60598684057987),
+    )
+}
+
 #[test]
 fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_tip_on_a_bowl() {
     let bowl = Prepared::new(fixture_object("bowl", 0.05));
     let pencil = Prepared::new(fixture_object("pencil", 0.05));
-    let start = pose(
-        DQuat::from_array([0.0, 0.8977059759571835, 0.0, 0.44059503030647196]),
-        DVec3::new(-130.3998473869082, 0.0, 114.60598684057987),
-    );
+    let start = pencil_resting_in_a_bowl();
     walk(&bowl, &pencil, start, &STEPS, 2.5);
 }
 
@@ -182,10 +188,7 @@ fn a_carried_front_answers_like_a_fresh_one_for_a_pencil_tip_on_a_bowl() {
 fn an_apex_front_follows_the_apex_across_a_face() {
     let bowl = Prepared::new(fixture_object("bowl", 0.05));
     let pencil = Prepared::new(fixture_object("pencil", 0.05));
-    let start = pose(
-        DQuat::from_array([0.0, 0.8977059759571835, 0.0, 0.44059503030647196]),
-        DVec3::new(-130.3998473869082, 0.0, 114.60598684057987),
-    );
+    let start = pencil_resting_in_a_bowl();
     let mut carried = MeshScratch::default();
     let mut compared = 0;
     for k in 0..80 {
@@ -280,10 +283,7 @@ fn triangles_apart_are_not_tested_for_intersection() {
 fn certified_pairs_are_not_tested_again_under_small_motions() {
     let bowl = Prepared::new(fixture_object("bowl", 0.02));
     let pencil = Prepared::new(fixture_object("pencil", 0.02));
-    let start = pose(
-        DQuat::from_array([0.0, 0.8977059759571835, 0.0, 0.44059503030647196]),
-        DVec3::new(-130.3998473869082, 0.0, 114.60598684057987),
-    );
+    let start = pencil_resting_in_a_bowl();
     let nudged = pose(
         start.rotation,
         start.translation + DVec3::new(1e-4, -2e-4, 1e-4),

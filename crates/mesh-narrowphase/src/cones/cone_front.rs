@@ -261,10 +261,14 @@ impl ApexFront {
             // Entries dropped by distance whose margins the motion has used up; those tested
             // every query (negative margins) do not count: a traversal from the root would
             // stop at them again.
-            let used_up = (self.entries.iter())
-                .filter(|e| e.slack >= 0.0 && e.slack <= moved)
-                .count();
-            let carried = self.entries.iter().filter(|e| e.slack > moved).count();
+            let (mut used_up, mut carried) = (0_usize, 0_usize);
+            for e in &self.entries {
+                if e.slack > moved {
+                    carried += 1;
+                } else if e.slack >= 0.0 {
+                    used_up += 1;
+                }
+            }
             if (used_up as f64) <= RETEST_FRACTION * (used_up + carried) as f64 {
                 self.entries.retain(|e| {
                     if e.slack > moved {

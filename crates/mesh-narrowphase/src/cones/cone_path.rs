@@ -6,7 +6,7 @@
 use crate::cones::cone_front::{ApexFront, ConeFront};
 use crate::cones::cone_traversal::{PairFrame, TraversalOutput, traverse, traverse_point};
 use crate::cones::normal_cone::{CriticalKinds, NormalCone};
-use crate::cones::patch_tree::{self, PIECE_SIDES, PatchLeaf, PatchNode, PatchTree, Piece};
+use crate::cones::patch_tree::{self, Apex, PIECE_SIDES, PatchLeaf, PatchNode, PatchTree, Piece};
 use crate::mesh_phase::{MeshOutput, MeshVerdict};
 use crate::pair_key::PairKey;
 use crate::query_side::Side;
@@ -134,34 +134,22 @@ pub(crate) fn cone_path(
     let inverse = pose_ab.inverse();
     // Each apex against the other tree, from its own front.
     let [fronts_a, fronts_b] = &mut front.apexes;
-    fronts_a.resize_with(tree_a.apexes.len(), ApexFront::default);
-    fronts_b.resize_with(tree_b.apexes.len(), ApexFront::default);
-    for ((k, apex), apex_front) in tree_a.apexes.iter().enumerate().zip(fronts_a) {
-        let cone = apex.cone.rotated(inverse.rotation);
-        let point = inverse * apex.point;
-        let moved = apex_front.start(tree_b, (k as u32, point, true), reach, traversal);
-        traverse_point(
-            tree_b,
-            (k as u32, point, &cone),
-            true,
-            (reach, moved),
-            traversal,
-        );
-        apex_front.finish(traversal);
-    }
-    for ((k, apex), apex_front) in tree_b.apexes.iter().enumerate().zip(fronts_b) {
-        let cone = apex.cone.rotated(pose_ab.rotation);
-        let point = *pose_ab * apex.point;
-        let moved = apex_front.start(tree_a, (k as u32, point, false), reach, traversal);
-        traverse_point(
-            tree_a,
-            (k as u32, point, &cone),
-            false,
-            (reach, moved),
-            traversal,
-        );
-        apex_front.finish(traversal);
-    }
+    traverse_apexes(
+        &tree_a.apexes,
+        fronts_a,
+        (tree_b, &inverse),
+        true,
+        reach,
+        traversal,
+    );
+    traverse_apexes(
+        &tree_b.apexes,
+        fronts_b,
+        (tree_a, pose_ab),
+        false,
+        reach,
+        traversal,
+    );
     out.stats.node_pairs_visited = traversal.visited;
     out.stats.certified_pairs = u32::try_from(traversal.certified.len()).unwrap_or(u32::MAX);
     out.stats.leaf_pairs = u32::try_from(traversal.leaves.len()).unwrap_or(u32::MAX);
@@ -411,6 +399,34 @@ pub(crate) fn cone_path(
         MeshVerdict::Separated
     } else {
         MeshVerdict::Seeds
+    }
+}
+
+/// Traverses `tree` by each of the other component's `apexes` (of A when `point_is_a`), moved
+/// into the tree's frame by `to_tree`, each from its own front (`fronts`, one per apex, made
+/// on first use), within `reach` (mm).
+fn traverse_apexes(
+    apexes: &[Apex],
+    fronts: &mut Vec<ApexFront>,
+    (tree, to_tree): (&PatchTree, &DPose3),
+    point_is_a: bool,
+    reach: f64,
+    traversal: &mut TraversalOutput,
+) {
+    fronts.resize_with(apexes.len(), ApexFront::default);
+    for ((k, apex), front) in apexes.iter().enumerate().zip(fronts) {
+        let k = u32::try_from(k).expect("fewer than 2^32 apexes");
+        let cone = apex.cone.rotated(to_tree.rotation);
+        let point = *to_tree * apex.point;
+        let moved = front.start(tree, (k, point, point_is_a), reach, traversal);
+        traverse_point(
+            tree,
+            (k, point, &cone),
+            point_is_a,
+            (reach, moved),
+            traversal,
+        );
+        front.finish(traversal);
     }
 }
 
