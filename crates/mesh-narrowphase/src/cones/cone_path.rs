@@ -827,9 +827,9 @@ fn lowest_gap(ha: &Height, hb: &Height) -> DVec2 {
 /// lies within `snap` (mm; the candidate's merge radius, within which the models place the
 /// minimum, or the mesh's chordal error where that is more): a start that close stands for the
 /// same minimum as the prediction. Otherwise, where the prediction fell farther beyond the
-/// node, the nearest of the pieces of the `nearby` node (of the other certified pairs' nodes on
-/// the same side) whose centre lies nearest the prediction, when that lies within `snap`; and
-/// failing that, the nearest of the whole component's. Searching the whole component whenever
+/// node, the nearest piece of whichever `nearby` node (the other certified pairs' nodes on this
+/// side) has its centre nearest the prediction, when that piece lies within `snap`; failing
+/// that, the nearest piece of the whole component. Searching the whole component whenever
 /// the prediction lay beyond the node by more than the chordal error was a sixth of Stage 2 for
 /// a pencil resting in a bowl at chordal tolerance 0.01 mm (33 certified pairs), and grew as
 /// the tolerance shrank; the start now lies up to `snap` from the prediction rather than the
