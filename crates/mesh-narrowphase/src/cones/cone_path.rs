@@ -352,6 +352,7 @@ pub(crate) fn cone_path(
             &found[i],
             context,
             (side_a, side_b),
+            (tree_a, tree_b),
             pose_ab,
             allowance,
             (&mut rings, seed_distances),
@@ -387,6 +388,7 @@ pub(crate) fn cone_path(
                         &r,
                         context,
                         (side_a, side_b),
+                        (tree_a, tree_b),
                         pose_ab,
                         allowance,
                         (&mut rings, seed_distances),
@@ -470,6 +472,7 @@ fn judge(
     f: &Found,
     (found, kept, earlier): (&[Found], &[usize], &[usize]),
     (side_a, side_b): (&Side<'_>, &Side<'_>),
+    trees: (&PatchTree, &PatchTree),
     pose_ab: &DPose3,
     allowance: f64,
     (rings, seed_distances): (&mut (&mut Vec<u32>, &mut Vec<u32>), &mut Vec<f64>),
@@ -519,6 +522,7 @@ fn judge(
     // where `f` lies on no ridge that `g` does not: a ridge has minima of its own, which the
     // ridge rule above keeps apart from a neighbour off the ridge unless the meshes alone
     // tell the two apart.
+    let mut facing = None;
     let lower = |k: usize| {
         let g = &found[k];
         if certainly_lower(g, f) {
@@ -538,7 +542,15 @@ fn judge(
             seed_distances[k] =
                 seed_distance(g, (side_a, side_b), pose_ab).unwrap_or(f64::INFINITY);
         }
-        seed_distances[k] + allowance < f.rank.1 - f_leaf.error
+        // Below the bound with both deviations, or not below the mesh distance itself, before
+        // the exact points of [`facing_error`] are evaluated.
+        let reached = seed_distances[k] + allowance;
+        if reached < f.rank.1 - f_leaf.error || reached >= f.rank.1 {
+            return reached < f.rank.1 - f_leaf.error;
+        }
+        let error = *facing
+            .get_or_insert_with(|| facing_error(f, &f_leaf, (side_a, side_b), trees, pose_ab));
+        reached < f.rank.1 - error
     };
     let is_minimum = || {
         *minimum.get_or_insert_with(|| {
@@ -593,6 +605,72 @@ fn superseded<'f>(
             && lower(k)
             && !is_minimum()
     })
+}
+
+/// The error bound (mm) of leaf candidate `f`'s mesh distance as a lower bound of the exact
+/// surfaces' distance over its pieces, counting only how far each exact surface comes out of
+/// its piece toward the other: at most `leaf.error`, the two pieces' deviation bounds.
+///
+/// The candidate's points are the closest points of two convex sets (its pieces, or a ridge
+/// side and a piece), so with w the unit vector from A's point to B's, A's set lies where
+/// x · w <= point_a · w and B's where x · w >= point_b · w. An exact point x = y + e over a
+/// piece point y leaves the gap at least d - max e_A · w - max e_B · (-w). Over a piece, g(b) =
+/// e(b) · w is to second order a quadratic Σ c_ij b_i b_j in the barycentric coordinates that
+/// vanishes at the corners, with c_ij = 4 m_ij for its values m_ij at the side midpoints, so
+/// g <= max(0, max c_ij) / 3 = 4/3 max(0, max m_ij). `piece_deviation`'s factor 2 over the
+/// largest midpoint deviation |e_ij| leaves 2/3 of it for the third-order remainder, and so
+/// does this bound: 4/3 max(0, max m_ij) + 2/3 max |e_ij|, plus the same rounding allowance,
+/// and never more than the piece's deviation bound.
+///
+/// Why: a concave face's mesh lies in front of it (a tube's bore meshed by chords), so
+/// counting its whole deviation against the distance made the candidates along a conformal
+/// contact look possibly lower than their neighbours. A pencil leaning in a tube's bore, its
+/// body 0.05 mm from the bottom rim: two candidates on the rim, 2.4 mm apart, each kept a seed
+/// of the one minimum between them, the later one's mesh distance 0.140 less 0.065 of
+/// deviations lying above the earlier one's exact 0.092 at its seed. This bound is 0.045
+/// there (0.140 - 0.045 = 0.095), and the later candidate is superseded: three Newton runs
+/// for that query's two contacts instead of four. The exact points are evaluated only where
+/// the bound with both deviations fails and the mesh distance itself would pass.
+fn facing_error(
+    f: &Found,
+    leaf: &LeafPair,
+    (side_a, side_b): (&Side<'_>, &Side<'_>),
+    (tree_a, tree_b): (&PatchTree, &PatchTree),
+    pose_ab: &DPose3,
+) -> f64 {
+    let gap = f.point_b - f.point_a;
+    let length = gap.length();
+    if !(length.is_finite() && length > 0.0) {
+        return leaf.error;
+    }
+    let w = gap / length;
+    // The direction each side's surface faces, in its own frame.
+    let toward = [w, pose_ab.rotation.inverse() * -w];
+    let mut total = 0.0;
+    for (k, (side, tree)) in [(side_a, tree_a), (side_b, tree_b)].into_iter().enumerate() {
+        let Some((piece, _)) = piece_of(tree, leaf.nodes[k], None) else {
+            return leaf.error;
+        };
+        let (mut outward, mut largest) = (0.0_f64, 0.0_f64);
+        for &(i, j) in &PIECE_SIDES {
+            let mut b = [0.0; 3];
+            (b[i], b[j]) = (0.5, 0.5);
+            let Some((mid, _)) = piece_point(side, piece, b) else {
+                return leaf.error;
+            };
+            let exact = side.object.solid.point_at(&mid.location);
+            let e = exact - mid.local_point;
+            let m = e.dot(toward[k]);
+            if !m.is_finite() {
+                return leaf.error;
+            }
+            outward = outward.max(m);
+            largest = largest.max(e.length());
+        }
+        let bound = 4.0 / 3.0 * outward + 2.0 / 3.0 * largest + 1e-12 * side.size;
+        total += bound.min(piece.deviation);
+    }
+    total.min(leaf.error)
 }
 
 /// The distance (mm) between the exact surface points of a made seed's two locations (B's
