@@ -609,18 +609,13 @@ fn superseded<'f>(
 
 /// The error bound (mm) of leaf candidate `f`'s mesh distance as a lower bound of the exact
 /// surfaces' distance over its pieces, counting only how far each exact surface comes out of
-/// its piece toward the other: at most `leaf.error`, the two pieces' deviation bounds.
+/// its piece toward the other ([`patch_tree::facing_deviation`]): at most `leaf.error`, the two
+/// pieces' deviation bounds.
 ///
 /// The candidate's points are the closest points of two convex sets (its pieces, or a ridge
 /// side and a piece), so with w the unit vector from A's point to B's, A's set lies where
 /// x · w <= point_a · w and B's where x · w >= point_b · w. An exact point x = y + e over a
-/// piece point y leaves the gap at least d - max e_A · w - max e_B · (-w). Over a piece, g(b) =
-/// e(b) · w is to second order a quadratic Σ c_ij b_i b_j in the barycentric coordinates that
-/// vanishes at the corners, with c_ij = 4 m_ij for its values m_ij at the side midpoints, so
-/// g <= max(0, max c_ij) / 3 = 4/3 max(0, max m_ij). `piece_deviation`'s factor 2 over the
-/// largest midpoint deviation |e_ij| leaves 2/3 of it for the third-order remainder, and so
-/// does this bound: 4/3 max(0, max m_ij) + 2/3 max |e_ij|, plus the same rounding allowance,
-/// and never more than the piece's deviation bound.
+/// piece point y leaves the gap at least d - max e_A · w - max e_B · (-w).
 ///
 /// Why: a concave face's mesh lies in front of it (a tube's bore meshed by chords), so
 /// counting its whole deviation against the distance made the candidates along a conformal
@@ -651,24 +646,30 @@ fn facing_error(
         let Some((piece, _)) = piece_of(tree, leaf.nodes[k], None) else {
             return leaf.error;
         };
-        let (mut outward, mut largest) = (0.0_f64, 0.0_f64);
-        for &(i, j) in &PIECE_SIDES {
+        // The exact point less the piece point at barycentric coordinates `b` of the piece.
+        let offset = |b: [f64; 3]| {
+            let (at, _) = piece_point(side, piece, b)?;
+            Some(side.object.solid.point_at(&at.location) - at.local_point)
+        };
+        let (mut corners, mut midpoints) = ([DVec3::ZERO; 3], [DVec3::ZERO; 3]);
+        for (m, &(i, j)) in PIECE_SIDES.iter().enumerate() {
+            // A corner at a mesh vertex lies on the surface; a cut piece's other corners not.
+            if !piece.barycentric[i].to_array().contains(&1.0) {
+                let mut b = [0.0; 3];
+                b[i] = 1.0;
+                let Some(e) = offset(b) else {
+                    return leaf.error;
+                };
+                corners[i] = e;
+            }
             let mut b = [0.0; 3];
             (b[i], b[j]) = (0.5, 0.5);
-            let Some((mid, _)) = piece_point(side, piece, b) else {
+            let Some(e) = offset(b) else {
                 return leaf.error;
             };
-            let exact = side.object.solid.point_at(&mid.location);
-            let e = exact - mid.local_point;
-            let m = e.dot(toward[k]);
-            if !m.is_finite() {
-                return leaf.error;
-            }
-            outward = outward.max(m);
-            largest = largest.max(e.length());
+            midpoints[m] = e;
         }
-        let bound = 4.0 / 3.0 * outward + 2.0 / 3.0 * largest + 1e-12 * side.size;
-        total += bound.min(piece.deviation);
+        total += patch_tree::facing_deviation(piece, corners, midpoints, toward[k]);
     }
     total.min(leaf.error)
 }
