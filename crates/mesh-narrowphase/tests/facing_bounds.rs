@@ -94,6 +94,25 @@ fn exact_surfaces_stay_within_their_facing_bounds() {
                         for b in 0..=steps - a {
                             let w = [a, b, steps - a - b].map(|x| f64::from(x) / f64::from(steps));
                             if let Some(e) = offset(mesh, &model.solid, piece, w) {
+                                // FIXME: `piece_deviation` takes a piece's corners to lie on
+                                // its surface; a cut piece's do not, and on 12 of the pencil's
+                                // cut pieces at 0.05 mm the surface lies up to 1.13 times its
+                                // bound away. Today's behaviour: exact for uncut pieces, within
+                                // 1.15 times for cut ones.
+                                let cut = piece
+                                    .barycentric
+                                    .iter()
+                                    .any(|b| !b.to_array().contains(&1.0));
+                                let allowed = if cut { 1.15 } else { 1.0 };
+                                assert!(
+                                    e.length() <= allowed * piece.deviation + 1e-12,
+                                    "{name} at {tolerance}: piece of triangle {} (cut: {cut}) \
+                                     lies {:e} mm from its surface, beyond its deviation \
+                                     bound {:e}",
+                                    piece.triangle,
+                                    e.length(),
+                                    piece.deviation
+                                );
                                 worst = worst.max(e.dot(toward));
                             }
                         }
