@@ -352,7 +352,6 @@ pub(crate) fn cone_path(
             &found[i],
             context,
             (side_a, side_b),
-            (tree_a, tree_b),
             pose_ab,
             allowance,
             (&mut rings, seed_distances),
@@ -388,7 +387,6 @@ pub(crate) fn cone_path(
                         &r,
                         context,
                         (side_a, side_b),
-                        (tree_a, tree_b),
                         pose_ab,
                         allowance,
                         (&mut rings, seed_distances),
@@ -472,7 +470,6 @@ fn judge(
     f: &Found,
     (found, kept, earlier): (&[Found], &[usize], &[usize]),
     (side_a, side_b): (&Side<'_>, &Side<'_>),
-    trees: (&PatchTree, &PatchTree),
     pose_ab: &DPose3,
     allowance: f64,
     (rings, seed_distances): (&mut (&mut Vec<u32>, &mut Vec<u32>), &mut Vec<f64>),
@@ -522,7 +519,6 @@ fn judge(
     // where `f` lies on no ridge that `g` does not: a ridge has minima of its own, which the
     // ridge rule above keeps apart from a neighbour off the ridge unless the meshes alone
     // tell the two apart.
-    let mut facing = None;
     let lower = |k: usize| {
         let g = &found[k];
         if certainly_lower(g, f) {
@@ -542,15 +538,7 @@ fn judge(
             seed_distances[k] =
                 seed_distance(g, (side_a, side_b), pose_ab).unwrap_or(f64::INFINITY);
         }
-        // Below the bound with both deviations, or not below the mesh distance itself, before
-        // the exact points of [`facing_error`] are evaluated.
-        let reached = seed_distances[k] + allowance;
-        if reached < f.rank.1 - f_leaf.error || reached >= f.rank.1 {
-            return reached < f.rank.1 - f_leaf.error;
-        }
-        let error = *facing
-            .get_or_insert_with(|| facing_error(f, &f_leaf, (side_a, side_b), trees, pose_ab));
-        reached < f.rank.1 - error
+        seed_distances[k] + allowance < f.rank.1 - f_leaf.error
     };
     let is_minimum = || {
         *minimum.get_or_insert_with(|| {
@@ -605,73 +593,6 @@ fn superseded<'f>(
             && lower(k)
             && !is_minimum()
     })
-}
-
-/// The error bound (mm) of leaf candidate `f`'s mesh distance as a lower bound of the exact
-/// surfaces' distance over its pieces, counting only how far each exact surface comes out of
-/// its piece toward the other ([`patch_tree::facing_deviation`]): at most `leaf.error`, the two
-/// pieces' deviation bounds.
-///
-/// The candidate's points are the closest points of two convex sets (its pieces, or a ridge
-/// side and a piece), so with w the unit vector from A's point to B's, A's set lies where
-/// x · w <= point_a · w and B's where x · w >= point_b · w. An exact point x = y + e over a
-/// piece point y leaves the gap at least d - max e_A · w - max e_B · (-w).
-///
-/// Why: a concave face's mesh lies in front of it (a tube's bore meshed by chords), so
-/// counting its whole deviation against the distance made the candidates along a conformal
-/// contact look possibly lower than their neighbours. A pencil leaning in a tube's bore, its
-/// body 0.05 mm from the bottom rim: two candidates on the rim, 2.4 mm apart, each kept a seed
-/// of the one minimum between them, the later one's mesh distance 0.140 less 0.065 of
-/// deviations lying above the earlier one's exact 0.092 at its seed. This bound is 0.045
-/// there (0.140 - 0.045 = 0.095), and the later candidate is superseded: three Newton runs
-/// for that query's two contacts instead of four. The exact points are evaluated only where
-/// the bound with both deviations fails and the mesh distance itself would pass.
-fn facing_error(
-    f: &Found,
-    leaf: &LeafPair,
-    (side_a, side_b): (&Side<'_>, &Side<'_>),
-    (tree_a, tree_b): (&PatchTree, &PatchTree),
-    pose_ab: &DPose3,
-) -> f64 {
-    let gap = f.point_b - f.point_a;
-    let length = gap.length();
-    if !(length.is_finite() && length > 0.0) {
-        return leaf.error;
-    }
-    let w = gap / length;
-    // The direction each side's surface faces, in its own frame.
-    let toward = [w, pose_ab.rotation.inverse() * -w];
-    let mut total = 0.0;
-    for (k, (side, tree)) in [(side_a, tree_a), (side_b, tree_b)].into_iter().enumerate() {
-        let Some((piece, _)) = piece_of(tree, leaf.nodes[k], None) else {
-            return leaf.error;
-        };
-        // The exact point less the piece point at barycentric coordinates `b` of the piece.
-        let offset = |b: [f64; 3]| {
-            let (at, _) = piece_point(side, piece, b)?;
-            Some(side.object.solid.point_at(&at.location) - at.local_point)
-        };
-        let (mut corners, mut midpoints) = ([DVec3::ZERO; 3], [DVec3::ZERO; 3]);
-        for (m, &(i, j)) in PIECE_SIDES.iter().enumerate() {
-            // A corner at a mesh vertex lies on the surface; a cut piece's other corners not.
-            if !piece.barycentric[i].to_array().contains(&1.0) {
-                let mut b = [0.0; 3];
-                b[i] = 1.0;
-                let Some(e) = offset(b) else {
-                    return leaf.error;
-                };
-                corners[i] = e;
-            }
-            let mut b = [0.0; 3];
-            (b[i], b[j]) = (0.5, 0.5);
-            let Some(e) = offset(b) else {
-                return leaf.error;
-            };
-            midpoints[m] = e;
-        }
-        total += patch_tree::facing_deviation(piece, corners, midpoints, toward[k]);
-    }
-    total.min(leaf.error)
 }
 
 /// The distance (mm) between the exact surface points of a made seed's two locations (B's

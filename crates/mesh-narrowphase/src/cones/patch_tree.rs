@@ -477,54 +477,6 @@ fn piece_deviation(
     (2.0 * largest + 1e-12 * magnitude).min(chordal_error)
 }
 
-/// A bound (mm) on how far the exact surface over `piece` comes out of it along the unit
-/// vector `toward`: on max (x(b) - y(b)) · toward over the piece, with y(b) the piece point of
-/// barycentric coordinates b and x(b) the exact point at the interpolated parameters there,
-/// given that offset x - y at the piece's corners (`corners`, zero at a mesh vertex) and at the
-/// midpoints of its sides (`midpoints`; sides (0, 1), (1, 2), (2, 0)).
-///
-/// To second order g(b) = (x(b) - y(b)) · toward is a quadratic Σ g_i b_i + Σ c_ij b_i b_j in
-/// the barycentric coordinates, with g_i its corner values and c_ij = 4 (m_ij - (g_i + g_j) / 2)
-/// for its midpoint values m_ij, so g <= max g_i + max(0, max c_ij) / 3 (Σ b_i b_j <= 1/3). A
-/// piece cut from a triangle has corners off the surface, where the offset is mostly
-/// tangential (the parameters interpolated across the triangle). `piece_deviation`'s factor 2
-/// over the largest sampled offset leaves 2/3 of it for the third-order remainder, and so does
-/// this bound: max(0, max g_i) + 4/3 max(0, max (m_ij - (g_i + g_j) / 2)) + 2/3 of the largest
-/// offset's length, plus the same rounding allowance, and never more than the piece's
-/// deviation bound. A concave face's piece faces its outside with about a third of its
-/// deviation bound: the mesh lies in front of the face.
-#[must_use]
-pub fn facing_deviation(
-    piece: &Piece,
-    corners: [DVec3; 3],
-    midpoints: [DVec3; 3],
-    toward: DVec3,
-) -> f64 {
-    let g = corners.map(|e| e.dot(toward));
-    let at_corners = g.iter().copied().fold(0.0, f64::max);
-    let bulge = PIECE_SIDES
-        .iter()
-        .zip(&midpoints)
-        .map(|(&(i, j), e)| e.dot(toward) - 0.5 * (g[i] + g[j]))
-        .fold(0.0, f64::max);
-    let largest = corners
-        .iter()
-        .chain(&midpoints)
-        .map(|e| e.length())
-        .fold(0.0, f64::max);
-    let magnitude = piece
-        .corners
-        .iter()
-        .map(|c| c.abs().max_element())
-        .fold(0.0, f64::max);
-    let bound = at_corners + 4.0 / 3.0 * bulge + 2.0 / 3.0 * largest + 1e-12 * magnitude;
-    if bound.is_finite() {
-        bound.min(piece.deviation)
-    } else {
-        piece.deviation
-    }
-}
-
 /// Where corner `k` of `piece` lies (see [`CornerFeature`]).
 fn corner_feature(mesh: &ComponentMesh, piece: &Piece, k: usize) -> CornerFeature {
     let Some(tri) = mesh.triangles.get(piece.triangle as usize) else {
